@@ -1,0 +1,25 @@
+// Exact differentiation over the DAG.
+#pragma once
+
+#include <unordered_map>
+
+#include "sym/expr.hpp"
+
+namespace dyncc::sym {
+
+/// d/d(var) with a memo table over nodes, so a subexpression shared by many outputs is
+/// differentiated once. Keep one Differentiator per variable alive to reuse its memo across
+/// many expressions (e.g. every entry of a mass matrix).
+class Differentiator {
+ public:
+  explicit Differentiator(Expr var);
+  Expr operator()(Expr e);
+
+ private:
+  Expr var_;
+  std::unordered_map<const Node*, Expr> memo_;
+};
+
+Expr diff(Expr e, Expr var);
+
+}  // namespace dyncc::sym

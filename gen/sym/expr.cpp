@@ -1,0 +1,531 @@
+#include "sym/expr.hpp"
+
+#include <algorithm>
+#include <deque>
+#include <stdexcept>
+#include <unordered_map>
+#include <unordered_set>
+
+#include "sym/node.hpp"
+
+namespace dyncc::sym {
+namespace {
+
+std::size_t mix(std::size_t h, std::size_t v) {
+  // 64-bit hash combine (boost-style with a better multiplier); deterministic by construction.
+  h ^= v + 0x9E3779B97F4A7C15ULL + (h << 12U) + (h >> 4U);
+  return h * 0xFF51AFD7ED558CCDULL;
+}
+
+std::size_t fnv1a(std::string_view s) {
+  std::size_t h = 1469598103934665603ULL;
+  for (const char c : s) {
+    h ^= static_cast<unsigned char>(c);
+    h *= 1099511628211ULL;
+  }
+  return h;
+}
+
+std::size_t compute_hash(const Node& n) {
+  std::size_t h = mix(0x51ED270B27D3F1A5ULL, static_cast<std::size_t>(n.kind));
+  h = mix(h, n.value.hash());
+  if (!n.name.empty()) h = mix(h, fnv1a(n.name));
+  for (const Expr a : n.args) h = mix(h, a.hash());
+  for (const Rational& w : n.weights) h = mix(h, w.hash());
+  return h;
+}
+
+struct NodePtrHash {
+  std::size_t operator()(const Node* n) const { return n->hash; }
+};
+struct NodePtrEq {
+  bool operator()(const Node* a, const Node* b) const {
+    return a->kind == b->kind && a->hash == b->hash && a->value == b->value && a->name == b->name &&
+           a->args == b->args && a->weights == b->weights;
+  }
+};
+
+struct Pool {
+  std::deque<Node> storage;
+  std::unordered_set<const Node*, NodePtrHash, NodePtrEq> table;
+  Pool() { table.reserve(1U << 16U); }
+};
+
+Pool& pool() {
+  static Pool* const instance = new Pool();  // never destroyed: nodes outlive every static user
+  return *instance;
+}
+
+const Node* zero_node() {
+  static const Node* const zero = number(Rational(0)).node();
+  return zero;
+}
+
+// Deep structural comparison; only reached when two distinct nodes share a 64-bit hash.
+int structural_compare(Expr a, Expr b) {
+  if (a == b) return 0;
+  const Node& x = *a.node();
+  const Node& y = *b.node();
+  if (x.kind != y.kind) return x.kind < y.kind ? -1 : 1;
+  if (x.value != y.value) return x.value < y.value ? -1 : 1;
+  if (x.name != y.name) return x.name < y.name ? -1 : 1;
+  if (x.args.size() != y.args.size()) return x.args.size() < y.args.size() ? -1 : 1;
+  for (std::size_t i = 0; i < x.args.size(); ++i) {
+    const int c = canonical_less(x.args[i], y.args[i]) ? -1 : (canonical_less(y.args[i], x.args[i]) ? 1 : 0);
+    if (c != 0) return c;
+  }
+  for (std::size_t i = 0; i < x.weights.size(); ++i) {
+    if (x.weights[i] != y.weights[i]) return x.weights[i] < y.weights[i] ? -1 : 1;
+  }
+  return 0;
+}
+
+using WeightedList = std::vector<std::pair<Expr, Rational>>;
+
+// Sorts by canonical order and merges equal expressions by adding their weights; drops zeros.
+void sort_and_merge(WeightedList& list) {
+  std::sort(list.begin(), list.end(), [](const auto& l, const auto& r) { return canonical_less(l.first, r.first); });
+  std::size_t out = 0;
+  for (std::size_t i = 0; i < list.size();) {
+    Rational w = list[i].second;
+    std::size_t j = i + 1;
+    while (j < list.size() && list[j].first == list[i].first) w += list[j++].second;
+    if (!w.is_zero()) list[out++] = {list[i].first, w};
+    i = j;
+  }
+  list.resize(out);
+}
+
+Expr make_mul_node(const Rational& coef, const WeightedList& factors) {
+  Node n;
+  n.kind = Kind::Mul;
+  n.value = coef;
+  n.args.reserve(factors.size());
+  n.weights.reserve(factors.size());
+  for (const auto& [base, exp] : factors) {
+    n.args.push_back(base);
+    n.weights.push_back(exp);
+  }
+  return intern(std::move(n));
+}
+
+// Adds e (times scale) into an Add accumulator.
+void accumulate_term(Expr e, const Rational& scale, Rational& constant, WeightedList& terms) {
+  switch (e.kind()) {
+    case Kind::Number: constant += scale * e.value(); return;
+    case Kind::Add:
+      constant += scale * e.value();
+      for (std::size_t i = 0; i < e.args().size(); ++i) terms.emplace_back(e.args()[i], scale * e.weights()[i]);
+      return;
+    default: {
+      auto [c, rest] = split_coefficient(e);
+      terms.emplace_back(rest, scale * c);
+      return;
+    }
+  }
+}
+
+Expr build_add(Rational constant, WeightedList& terms) {
+  sort_and_merge(terms);
+  if (terms.empty()) return number(constant);
+  if (constant.is_zero() && terms.size() == 1) return number(terms[0].second) * terms[0].first;
+  Node n;
+  n.kind = Kind::Add;
+  n.value = constant;
+  n.args.reserve(terms.size());
+  n.weights.reserve(terms.size());
+  for (const auto& [t, c] : terms) {
+    n.args.push_back(t);
+    n.weights.push_back(c);
+  }
+  return intern(std::move(n));
+}
+
+void accumulate_factor(Expr e, const Rational& exponent, Rational& coef, WeightedList& factors) {
+  switch (e.kind()) {
+    case Kind::Number: {
+      if (!exponent.is_integer()) throw std::domain_error("non-integer power of a number");
+      if (e.value().is_zero() && exponent.is_negative()) throw std::domain_error("division by zero");
+      coef *= e.value().pow(static_cast<int>(exponent.num()));
+      return;
+    }
+    case Kind::Mul:
+      coef *= e.value().pow(static_cast<int>(exponent.num()));
+      for (std::size_t i = 0; i < e.args().size(); ++i) factors.emplace_back(e.args()[i], e.weights()[i] * exponent);
+      return;
+    default: factors.emplace_back(e, exponent); return;
+  }
+}
+
+Expr build_mul(Rational coef, WeightedList& factors) {
+  if (coef.is_zero()) return Expr(0);
+  for (;;) {
+    sort_and_merge(factors);
+    // sqrt(u)^e with |e| >= 2: pull whole powers of u out so sqrt(u)^2 == u.
+    bool changed = false;
+    for (std::size_t i = 0; i < factors.size(); ++i) {
+      auto& [base, exp] = factors[i];
+      if (base.kind() == Kind::Sqrt && (exp.num() >= 2 || exp.num() <= -2)) {
+        const std::int64_t whole = exp.num() / 2;
+        const Expr u = base.args()[0];
+        exp = Rational(exp.num() - 2 * whole);
+        accumulate_factor(u, Rational(whole), coef, factors);
+        changed = true;
+        break;
+      }
+    }
+    if (!changed) break;
+  }
+  if (coef.is_zero()) return Expr(0);
+  if (factors.empty()) return number(coef);
+  if (factors.size() == 1 && factors[0].second.is_one()) {
+    const Expr base = factors[0].first;
+    if (coef.is_one()) return base;
+    if (base.kind() == Kind::Add) {  // distribute a number over a sum
+      Rational constant = coef * base.value();
+      WeightedList terms;
+      terms.reserve(base.args().size());
+      for (std::size_t i = 0; i < base.args().size(); ++i) terms.emplace_back(base.args()[i], coef * base.weights()[i]);
+      return build_add(constant, terms);
+    }
+  }
+  return make_mul_node(coef, factors);
+}
+
+// Splits arg into rest + k*pi with k rational.
+std::pair<Expr, Rational> split_pi_multiple(Expr arg) {
+  const Expr p = pi();
+  if (arg == p) return {Expr(0), Rational(1)};
+  if (arg.kind() == Kind::Mul && arg.args().size() == 1 && arg.args()[0] == p && arg.weights()[0].is_one()) {
+    return {Expr(0), arg.value()};
+  }
+  if (arg.kind() == Kind::Add) {
+    for (std::size_t i = 0; i < arg.args().size(); ++i) {
+      if (arg.args()[i] == p) return {arg - number(arg.weights()[i]) * p, arg.weights()[i]};
+    }
+  }
+  return {arg, Rational(0)};
+}
+
+// Reduces k to [0, 2).
+Rational reduce_mod_two(Rational k) {
+  const std::int64_t twice_floor = [&] {
+    // floor(k / 2) * 2
+    std::int64_t q = k.num() / (2 * k.den());
+    if (k.num() < 0 && q * 2 * k.den() != k.num()) --q;
+    return q * 2;
+  }();
+  return k - Rational(twice_floor);
+}
+
+enum class TrigKind : std::uint8_t { Sin, Cos };
+
+Expr make_function(Kind kind, std::vector<Expr> args) {
+  Node n;
+  n.kind = kind;
+  n.args = std::move(args);
+  return intern(std::move(n));
+}
+
+Expr trig(TrigKind which, Expr arg) {
+  auto [rest, k] = split_pi_multiple(arg);
+  k = reduce_mod_two(k);
+  int quarter_turns = -1;  // k = quarter_turns/2 when k is a multiple of 1/2
+  if ((k * Rational(2)).is_integer()) quarter_turns = static_cast<int>((k * Rational(2)).num());
+  Expr base_arg = rest;
+  // Not a multiple of pi/2: keep the (reduced) pi part inside the argument.
+  if (quarter_turns < 0) base_arg = k.is_zero() ? rest : rest + number(k) * pi();
+  // odd/even symmetry
+  bool negate_result = false;
+  if (has_negative_sign(base_arg)) {
+    base_arg = -base_arg;
+    if (quarter_turns < 0) {
+      if (which == TrigKind::Sin) negate_result = true;
+    } else {
+      // sin(-r + m pi/2), cos(-r + m pi/2): rewrite with r then apply the shift below
+      if (which == TrigKind::Sin) negate_result = true;
+      // sin(-r + m*pi/2) = -sin(r - m*pi/2); cos(-r + m*pi/2) = cos(r - m*pi/2)
+      quarter_turns = (4 - quarter_turns) % 4;
+    }
+  }
+  if (quarter_turns < 0) {
+    const Expr e = make_function(which == TrigKind::Sin ? Kind::Sin : Kind::Cos, {base_arg});
+    return negate_result ? -e : e;
+  }
+  // f(r + m*pi/2) for m in 0..3
+  const bool zero_arg = base_arg.is_zero();
+  const Expr s = zero_arg ? Expr(0) : make_function(Kind::Sin, {base_arg});
+  const Expr c = zero_arg ? Expr(1) : make_function(Kind::Cos, {base_arg});
+  Expr result;
+  if (which == TrigKind::Sin) {
+    const Expr table[4] = {s, c, -s, -c};
+    result = table[quarter_turns];
+  } else {
+    const Expr table[4] = {c, -s, -c, s};
+    result = table[quarter_turns];
+  }
+  return negate_result ? -result : result;
+}
+
+bool rational_sqrt(const Rational& v, Rational& out) {
+  auto isqrt = [](std::int64_t n, std::int64_t& r) {
+    if (n < 0) return false;
+    auto x = static_cast<std::int64_t>(__builtin_sqrt(static_cast<double>(n)));
+    while (x > 0 && x * x > n) --x;
+    while ((x + 1) * (x + 1) <= n) ++x;
+    r = x;
+    return x * x == n;
+  };
+  std::int64_t n = 0;
+  std::int64_t d = 0;
+  if (!isqrt(v.num(), n) || !isqrt(v.den(), d)) return false;
+  out = Rational(n, d);
+  return true;
+}
+
+}  // namespace
+
+Expr intern(Node&& node) {
+  node.hash = compute_hash(node);
+  Pool& p = pool();
+  if (const auto it = p.table.find(&node); it != p.table.end()) return Expr(*it);
+  p.storage.push_back(std::move(node));
+  const Node* stored = &p.storage.back();
+  p.table.insert(stored);
+  return Expr(stored);
+}
+
+Expr::Expr() : node_(zero_node()) {}
+Expr::Expr(int value) : Expr(number(Rational(value))) {}
+Expr::Expr(std::int64_t value) : Expr(number(Rational(value))) {}
+Expr::Expr(const Rational& value) : Expr(number(value)) {}
+
+Kind Expr::kind() const { return node_->kind; }
+std::size_t Expr::hash() const { return node_->hash; }
+bool Expr::is_zero() const { return node_->kind == Kind::Number && node_->value.is_zero(); }
+bool Expr::is_one() const { return node_->kind == Kind::Number && node_->value.is_one(); }
+const Rational& Expr::value() const { return node_->value; }
+const std::string& Expr::name() const { return node_->name; }
+std::span<const Expr> Expr::args() const { return node_->args; }
+std::span<const Rational> Expr::weights() const { return node_->weights; }
+
+std::size_t Expr::dag_size() const {
+  std::unordered_set<const Node*> seen;
+  std::vector<const Node*> stack{node_};
+  while (!stack.empty()) {
+    const Node* n = stack.back();
+    stack.pop_back();
+    if (!seen.insert(n).second) continue;
+    for (const Expr a : n->args) stack.push_back(a.node());
+  }
+  return seen.size();
+}
+
+Expr number(const Rational& value) {
+  Node n;
+  n.kind = Kind::Number;
+  n.value = value;
+  return intern(std::move(n));
+}
+
+Expr symbol(std::string_view name) {
+  if (name == "pi") return pi();
+  Node n;
+  n.kind = Kind::Symbol;
+  n.name = std::string(name);
+  return intern(std::move(n));
+}
+
+Expr pi() {
+  static const Expr p = [] {
+    Node n;
+    n.kind = Kind::Constant;
+    n.name = "pi";
+    return intern(std::move(n));
+  }();
+  return p;
+}
+
+Expr add(std::span<const Expr> terms) {
+  Rational constant;
+  WeightedList list;
+  list.reserve(terms.size() + 4);
+  for (const Expr t : terms) accumulate_term(t, Rational(1), constant, list);
+  return build_add(constant, list);
+}
+
+Expr linear_combination(std::span<const std::pair<Rational, Expr>> terms, const Rational& constant) {
+  Rational c = constant;
+  WeightedList list;
+  list.reserve(terms.size() + 4);
+  for (const auto& [w, t] : terms) {
+    if (!w.is_zero()) accumulate_term(t, w, c, list);
+  }
+  return build_add(c, list);
+}
+
+Expr mul(std::span<const Expr> factors) {
+  Rational coef(1);
+  WeightedList list;
+  list.reserve(factors.size() + 4);
+  for (const Expr f : factors) {
+    if (f.is_zero()) return Expr(0);
+    accumulate_factor(f, Rational(1), coef, list);
+  }
+  return build_mul(coef, list);
+}
+
+Expr pow(Expr base, int exponent) {
+  if (exponent == 0) return Expr(1);
+  if (exponent == 1) return base;
+  if (base.is_zero()) {
+    if (exponent < 0) throw std::domain_error("division by zero");
+    return Expr(0);
+  }
+  Rational coef(1);
+  WeightedList list;
+  accumulate_factor(base, Rational(exponent), coef, list);
+  return build_mul(coef, list);
+}
+
+Expr sin(Expr arg) { return trig(TrigKind::Sin, arg); }
+Expr cos(Expr arg) { return trig(TrigKind::Cos, arg); }
+
+Expr sqrt(Expr arg) {
+  if (arg.is_number()) {
+    if (arg.value().is_negative()) throw std::domain_error("square root of a negative number");
+    Rational r;
+    if (rational_sqrt(arg.value(), r)) return number(r);
+  }
+  return make_function(Kind::Sqrt, {arg});
+}
+
+Expr atan2(Expr y, Expr x) {
+  if (y.is_zero() && x.is_number() && !x.value().is_negative() && !x.is_zero()) return Expr(0);
+  return make_function(Kind::Atan2, {y, x});
+}
+
+Expr operator+(Expr a, Expr b) {
+  if (a.is_zero()) return b;
+  if (b.is_zero()) return a;
+  if (a.is_number() && b.is_number()) return number(a.value() + b.value());
+  const Expr ops[2] = {a, b};
+  return add(ops);
+}
+
+Expr operator-(Expr a) {
+  if (a.is_number()) return number(-a.value());
+  Rational coef(-1);
+  WeightedList list;
+  accumulate_factor(a, Rational(1), coef, list);
+  return build_mul(coef, list);
+}
+
+Expr operator-(Expr a, Expr b) { return a + (-b); }
+
+Expr operator*(Expr a, Expr b) {
+  if (a.is_zero() || b.is_zero()) return Expr(0);
+  if (a.is_one()) return b;
+  if (b.is_one()) return a;
+  if (a.is_number() && b.is_number()) return number(a.value() * b.value());
+  const Expr ops[2] = {a, b};
+  return mul(ops);
+}
+
+Expr operator/(Expr a, Expr b) {
+  if (b.is_zero()) throw std::domain_error("division by zero");
+  return a * pow(b, -1);
+}
+
+std::pair<Rational, Expr> split_coefficient(Expr e) {
+  if (e.is_number()) return {e.value(), Expr(1)};
+  if (e.kind() != Kind::Mul || e.value().is_one()) return {Rational(1), e};
+  const auto args = e.args();
+  const auto weights = e.weights();
+  if (args.size() == 1 && weights[0].is_one()) return {e.value(), args[0]};
+  WeightedList factors;
+  factors.reserve(args.size());
+  for (std::size_t i = 0; i < args.size(); ++i) factors.emplace_back(args[i], weights[i]);
+  return {e.value(), make_mul_node(Rational(1), factors)};
+}
+
+bool has_negative_sign(Expr e) {
+  switch (e.kind()) {
+    case Kind::Number:
+    case Kind::Mul: return e.value().is_negative();
+    case Kind::Add: return e.weights()[0].is_negative();
+    default: return false;
+  }
+}
+
+bool canonical_less(Expr a, Expr b) {
+  if (a == b) return false;
+  if (a.hash() != b.hash()) return a.hash() < b.hash();
+  return structural_compare(a, b) < 0;
+}
+
+bool natural_less(std::string_view a, std::string_view b) {
+  std::size_t i = 0;
+  std::size_t j = 0;
+  auto digit = [](char c) { return c >= '0' && c <= '9'; };
+  while (i < a.size() && j < b.size()) {
+    if (digit(a[i]) && digit(b[j])) {
+      std::size_t i2 = i;
+      std::size_t j2 = j;
+      while (i2 < a.size() && a[i2] == '0') ++i2;
+      while (j2 < b.size() && b[j2] == '0') ++j2;
+      std::size_t ie = i2;
+      std::size_t je = j2;
+      while (ie < a.size() && digit(a[ie])) ++ie;
+      while (je < b.size() && digit(b[je])) ++je;
+      if (ie - i2 != je - j2) return ie - i2 < je - j2;
+      const int c = a.substr(i2, ie - i2).compare(b.substr(j2, je - j2));
+      if (c != 0) return c < 0;
+      i = ie;
+      j = je;
+    } else {
+      if (a[i] != b[j]) return a[i] < b[j];
+      ++i;
+      ++j;
+    }
+  }
+  return a.size() - i < b.size() - j;
+}
+
+std::vector<Expr> free_symbols(Expr e) {
+  std::unordered_set<const Node*> seen;
+  std::vector<Expr> stack{e};
+  std::vector<Expr> found;
+  while (!stack.empty()) {
+    const Expr x = stack.back();
+    stack.pop_back();
+    if (!seen.insert(x.node()).second) continue;
+    if (x.kind() == Kind::Symbol) found.push_back(x);
+    for (const Expr a : x.args()) stack.push_back(a);
+  }
+  std::sort(found.begin(), found.end(), [](Expr l, Expr r) { return natural_less(l.name(), r.name()); });
+  return found;
+}
+
+bool depends_on(Expr e, Expr sym) {
+  std::unordered_map<const Node*, bool> memo;
+  std::function<bool(Expr)> rec = [&](Expr x) -> bool {
+    if (x == sym) return true;
+    if (x.args().empty()) return false;
+    if (const auto it = memo.find(x.node()); it != memo.end()) return it->second;
+    bool r = false;
+    for (const Expr a : x.args()) {
+      if (rec(a)) {
+        r = true;
+        break;
+      }
+    }
+    memo[x.node()] = r;
+    return r;
+  };
+  return rec(e);
+}
+
+std::size_t pool_size() { return pool().storage.size(); }
+
+}  // namespace dyncc::sym
