@@ -13,6 +13,9 @@ int main(int argc, char** argv) {
   int exit_code = dyncc::cli::kSuccess;
   dyncc::cli::register_expr_command(app, exit_code);
   dyncc::cli::register_check_command(app, exit_code);
+  dyncc::cli::register_derive_command(app, exit_code);
+  dyncc::cli::register_eval_command(app, exit_code);
+  dyncc::cli::register_verify_command(app, exit_code);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -1,0 +1,116 @@
+#!/usr/bin/env bash
+# Runs clang-tidy (policy: .clang-tidy at the repo root) over the project's own .cpp files and
+# fails when there is any finding.
+#
+# Usage: .ci/tidy.sh [-j N] [-p BUILD_DIR] [--fix] [FILE_REGEX...]
+#   -p BUILD_DIR   where compile_commands.json is (default build/release; configured with the
+#                  `release` preset when missing)
+#   -j N           parallel clang-tidy processes (default 2)
+#   --fix          apply the fix-its clang-tidy offers (review the diff!)
+#   FILE_REGEX     only files whose path matches one of these (e.g. gen/sym/)
+# Environment: CLANG_TIDY (binary, default clang-tidy-14 or clang-tidy).
+#
+# Scope: gen/, runtime/, tests/, bench/ sources as listed in compile_commands.json (so only what
+# is actually built), never fuzz/ (built by clang with other flags) or third-party code.
+# Output: the findings, then a count per check, then a count per file. The full log is kept in
+# BUILD_DIR/clang-tidy.log. Exit status: 0 clean, 1 findings, 2 usage/setup error.
+set -euo pipefail
+
+root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+build="$root/build/release"
+jobs=2
+fix=()
+filters=()
+while (($#)); do
+  case "$1" in
+    -p) build=$(cd "$2" && pwd); shift 2 ;;
+    -j) jobs=$2; shift 2 ;;
+    --fix) fix=(-fix); shift ;;
+    -h|--help) sed -n '2,17p' "$0"; exit 0 ;;
+    -*) echo "tidy.sh: unknown option $1" >&2; exit 2 ;;
+    *) filters+=("$1"); shift ;;
+  esac
+done
+
+tidy=${CLANG_TIDY:-}
+if [[ -z $tidy ]]; then
+  for candidate in clang-tidy-14 clang-tidy; do
+    if command -v "$candidate" >/dev/null; then tidy=$candidate; break; fi
+  done
+fi
+[[ -n $tidy ]] || { echo "tidy.sh: clang-tidy not found (apt-get install clang-tidy-14)" >&2; exit 2; }
+
+if [[ ! -f $build/compile_commands.json ]]; then
+  echo "tidy.sh: no compile_commands.json in $build; configuring the release preset" >&2
+  (cd "$root" && cmake --preset release >/dev/null)
+fi
+
+# The project's own translation units, in a stable order.
+mapfile -t files < <(python3 - "$build/compile_commands.json" "$root" "${filters[@]}" <<'EOF'
+import json, os, re, sys
+db, root, filters = sys.argv[1], sys.argv[2], sys.argv[3:]
+own = re.compile(r'^(gen|runtime|tests|bench)/.*\.(cc|cpp|cxx)$')
+seen = set()
+for entry in json.load(open(db)):
+    path = os.path.normpath(os.path.join(entry.get('directory', ''), entry['file']))
+    rel = os.path.relpath(path, root)
+    if own.match(rel) and os.path.exists(path) and rel not in seen and (not filters or any(re.search(f, rel) for f in filters)):
+        seen.add(rel)
+        print(path)
+EOF
+)
+((${#files[@]})) || { echo "tidy.sh: no matching sources in $build/compile_commands.json" >&2; exit 2; }
+echo "tidy.sh: $tidy on ${#files[@]} files with $jobs jobs" >&2
+
+log="$build/clang-tidy.log"
+status=0
+runner=$(command -v "run-${tidy}" || true)
+[[ -n $runner ]] || runner=$(command -v run-clang-tidy-14 || true)
+if [[ -n $runner && ${CLANG_TIDY_NO_RUNNER:-0} != 1 ]]; then
+  # run-clang-tidy takes regexes; anchor each file so no other file matches.
+  mapfile -t regexes < <(printf '%s\n' "${files[@]}" | sed -e 's/[.[\^$*+?(){}|]/\\&/g' -e 's/^/^/' -e 's/$/$/')
+  "$runner" -quiet -clang-tidy-binary "$(command -v "$tidy")" -p "$build" -j "$jobs" "${fix[@]}" \
+    "${regexes[@]}" >"$log" 2>&1 || status=$?
+else
+  printf '%s\0' "${files[@]}" |
+    xargs -0 -n 1 -P "$jobs" "$tidy" --quiet -p "$build" "${fix[@]}" >"$log" 2>&1 || status=$?
+fi
+
+# Findings: "path:line:col: warning|error: message [check]" (compiler diagnostics included, as
+# clang-diagnostic-*). A header finding is reported once per including file; keep the first.
+summary=0
+python3 - "$log" "$root" <<'EOF' || summary=$?
+import collections, re, sys
+log, root = sys.argv[1], sys.argv[2]
+pat = re.compile(r'^(/[^:]+):(\d+):(\d+): (warning|error): (.*?) \[([^\]]+)\]$')
+seen, findings = set(), []
+for line in open(log, errors='replace'):
+    m = pat.match(line.rstrip('\n'))
+    if not m:
+        continue
+    path, ln, col, _, msg, checks = m.groups()
+    check = checks.split(',')[0]
+    key = (path, ln, col, check)
+    if key in seen:
+        continue
+    seen.add(key)
+    findings.append((path.replace(root + '/', ''), int(ln), int(col), check, msg))
+for f in sorted(findings):
+    print(f'{f[0]}:{f[1]}:{f[2]}: {f[4]} [{f[3]}]')
+if findings:
+    print(f'\n{len(findings)} findings by check:')
+    for check, n in collections.Counter(f[3] for f in findings).most_common():
+        print(f'{n:6d}  {check}')
+    print('\nby file:')
+    for path, n in collections.Counter(f[0] for f in findings).most_common():
+        print(f'{n:6d}  {path}')
+sys.exit(1 if findings else 0)
+EOF
+if ((summary == 0 && status != 0)); then
+  # clang-tidy failed without a parsable finding (e.g. a file that does not compile): show why.
+  grep -E 'error|Error' "$log" | head -20 >&2
+  echo "tidy.sh: clang-tidy failed (exit $status); full log: $log" >&2
+  exit 1
+fi
+if ((summary != 0)); then echo "tidy.sh: findings above; full log: $log" >&2; exit 1; fi
+echo "tidy.sh: clean" >&2

@@ -1,0 +1,64 @@
+// Numbers from the derived model: H, C, tau_g, friction and Y at a state, for given parameter
+// values. Everything is compiled once into instruction tapes (constants substituted exactly
+// beforehand) and then evaluated at as many states as the checks need.
+#pragma once
+
+#include <Eigen/Dense>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "dynamics/model.hpp"
+#include "dynamics/regressor.hpp"
+#include "sym/evaluate.hpp"
+
+namespace dyncc::dyn {
+
+struct State {
+  Eigen::VectorXd q, qd, v, a;
+};
+
+struct Evaluation {
+  Eigen::MatrixXd H, C;
+  Eigen::VectorXd g, friction, tau;  // friction = FC sgn(qd) + FV v; tau = H a + C v + g + friction
+  Eigen::MatrixXd Y;                 // tau == Y * standard parameter values
+};
+
+class NumericModel {
+ public:
+  NumericModel(const robot::RobotDescription& robot, const DynamicModel& model, const Regressor& regressor);
+
+  /// Standard parameter values for the description's parameter values (nominal by default).
+  [[nodiscard]] Eigen::VectorXd standard_values(const std::map<std::string, double>& parameter_values) const;
+  [[nodiscard]] Eigen::VectorXd nominal_standard_values() const { return nominal_; }
+
+  [[nodiscard]] Evaluation evaluate(const State& s, const Eigen::VectorXd& standard) const;
+  /// Only the regressor (does not depend on parameters).
+  [[nodiscard]] Eigen::MatrixXd regressor(const State& s) const;
+  /// H alone (cheaper), for positive-definiteness and energy checks.
+  [[nodiscard]] Eigen::MatrixXd mass_matrix(const Eigen::VectorXd& q, const Eigen::VectorXd& standard) const;
+  /// Kinetic + potential energy.
+  [[nodiscard]] double energy(const Eigen::VectorXd& q, const Eigen::VectorXd& qd, const Eigen::VectorXd& standard) const;
+
+  [[nodiscard]] std::size_t dof() const { return n_; }
+  [[nodiscard]] std::size_t parameter_count() const { return p_; }
+
+ private:
+  [[nodiscard]] Eigen::VectorXd friction(const State& s, const Eigen::VectorXd& standard) const;
+
+  const DynamicModel& model_;
+  std::size_t n_, p_;
+  std::vector<sym::Expr> parameter_symbols_;
+  sym::CompiledFunction dynamics_;   // inputs q, qd, standard -> H (n*n), C (n*n), g (n)
+  sym::CompiledFunction mass_;       // inputs q, standard -> H
+  sym::CompiledFunction energy_;     // inputs q, qd, standard -> T + V
+  sym::CompiledFunction regressor_;  // inputs q, qd, v, a -> Y (n*p)
+  Eigen::VectorXd nominal_;
+  std::vector<sym::Expr> definitions_;  // standard parameter definitions with constants substituted
+  std::vector<sym::Expr> user_symbols_;
+};
+
+/// Uniform random states (angles in [-pi, pi], rates in [-2, 2]) from a seed: reproducible.
+State random_state(std::size_t n, std::uint64_t seed);
+
+}  // namespace dyncc::dyn
