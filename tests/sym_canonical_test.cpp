@@ -242,7 +242,9 @@ TEST(SymCanonical, StructuralInvariants) {
           EXPECT_NE(t.kind(), Kind::Number);
           EXPECT_NE(t.kind(), Kind::Add);
           EXPECT_TRUE(t.kind() != Kind::Mul || t.value().is_one()) << "term with a coefficient: " << to_string(t);
-          if (i > 0) EXPECT_TRUE(canonical_less(e.args()[i - 1], t));
+          if (i > 0) {
+            EXPECT_TRUE(canonical_less(e.args()[i - 1], t));
+          }
         }
       } else if (e.kind() == Kind::Mul) {
         ASSERT_EQ(e.args().size(), e.weights().size());
@@ -254,8 +256,12 @@ TEST(SymCanonical, StructuralInvariants) {
           EXPECT_FALSE(e.weights()[i].is_zero());
           EXPECT_NE(b.kind(), Kind::Number);
           EXPECT_NE(b.kind(), Kind::Mul);
-          if (b.kind() == Kind::Sqrt) EXPECT_EQ(e.weights()[i].abs(), Rational(1)) << to_string(e);
-          if (i > 0) EXPECT_TRUE(canonical_less(e.args()[i - 1], b));
+          if (b.kind() == Kind::Sqrt) {
+            EXPECT_EQ(e.weights()[i].abs(), Rational(1)) << to_string(e);
+          }
+          if (i > 0) {
+            EXPECT_TRUE(canonical_less(e.args()[i - 1], b));
+          }
         }
         // a number times a lone sum is always distributed
         EXPECT_FALSE(e.args().size() == 1 && e.weights()[0].is_one() && e.args()[0].kind() == Kind::Add) << to_string(e);

@@ -292,7 +292,9 @@ TEST(SymRational, ParseDecimal) {
   for (const Case& c : cases) {
     Rational out(42);
     EXPECT_EQ(Rational::parse_decimal(c.text, out), c.ok) << "'" << c.text << "'";
-    if (c.ok) EXPECT_EQ(out, c.value) << c.text;
+    if (c.ok) {
+      EXPECT_EQ(out, c.value) << c.text;
+    }
   }
   EXPECT_EQ(Rational(6, -4), Rational(-3, 2));
   EXPECT_EQ(Rational(6, -4).den(), 2);

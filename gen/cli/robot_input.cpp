@@ -17,7 +17,9 @@ std::unique_ptr<pipeline::Derivation> load_and_derive(const std::string& path, c
   auto robot = load_description(path);
   if (!robot) return nullptr;
   try {
-    return pipeline::derive(std::move(*robot), options);
+    auto d = pipeline::derive(std::move(*robot), options);
+    for (const std::string& w : d->warnings) fmt::print(stderr, "{}\n", w);
+    return d;
   } catch (const pipeline::DerivationError& e) {
     fmt::print(stderr, "{}\n", e.message);
     return nullptr;

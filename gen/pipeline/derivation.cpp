@@ -65,6 +65,18 @@ std::unique_ptr<Derivation> derive(robot::RobotDescription robot, const Derivati
   base_options.prove = options.prove_base_parameters;
   d->base = base::find_base_parameters(d->robot, d->model, d->regressor, *d->numeric, base_options);
   clock.lap("base parameters");
+  if (!d->robot.base_parameters.empty()) {
+    d->grouping = base::check_grouping(d->robot, d->model, d->base);
+    const robot::SourceLocation at = d->robot.base_parameters.front().location;
+    const std::string where = fmt::format("{}:{}:{}", d->robot.source_path.string(), at.line, at.column);
+    for (const std::string& w : d->grouping->warnings) d->warnings.push_back(fmt::format("{}: warning: base_parameters: {}", where, w));
+    if (!d->grouping->errors.empty()) {
+      std::string message;
+      for (const std::string& e : d->grouping->errors) message += fmt::format("{}{}: error: base_parameters: {}", message.empty() ? "" : "\n", where, e);
+      throw DerivationError{message};
+    }
+    clock.lap("user grouping check");
+  }
   return d;
 }
 

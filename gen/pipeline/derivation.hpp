@@ -3,10 +3,12 @@
 #pragma once
 
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "base/base_parameters.hpp"
+#include "base/grouping_check.hpp"
 #include "dynamics/model.hpp"
 #include "dynamics/numeric_model.hpp"
 #include "dynamics/regressor.hpp"
@@ -30,6 +32,8 @@ struct Derivation {
   dyn::Regressor regressor;
   std::unique_ptr<dyn::NumericModel> numeric;
   base::BaseParameterSet base;
+  std::optional<base::GroupingCheck> grouping;  // when the description has base_parameters
+  std::vector<std::string> warnings;            // "file:line:col: warning: ..." lines
   std::vector<StageTime> timings;
 
   Derivation() = default;

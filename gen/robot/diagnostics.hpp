@@ -46,6 +46,8 @@ class DiagnosticSink {
            std::string suggestion = {});
 
   [[nodiscard]] bool has_errors() const { return error_count_ > 0; }
+  /// True once further diagnostics would be dropped: callers skip costly suggestions then.
+  [[nodiscard]] bool saturated() const { return diagnostics_.size() >= kMaxDiagnostics; }
   [[nodiscard]] std::size_t error_count() const { return error_count_; }
   [[nodiscard]] const std::string& file() const { return file_; }
   /// All diagnostics, ordered by position in the file (stable for equal positions).

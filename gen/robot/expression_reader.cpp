@@ -55,7 +55,9 @@ std::optional<sym::Expr> read_expression(YamlReader& reader, const Located& valu
                                       scope.description));
     } else {
       const std::string suggestion =
-          closest_match(use.name, std::vector<std::string>(scope.names.begin(), scope.names.end()));
+          reader.sink().saturated()
+              ? std::string()
+              : closest_match(use.name, std::vector<std::string>(scope.names.begin(), scope.names.end()));
       reader.sink().error(at, value.path,
                           unknown_name_message("symbol", use.name, "this expression may use " + scope.description,
                                                suggestion),

@@ -8,9 +8,9 @@
 
 namespace dyncc::robot::detail {
 
-bool LoadState::is_coordinate(const std::string& name) const { return robot.find_coordinate(name).has_value(); }
+bool LoadState::is_coordinate(const std::string& name) const { return coordinate_index.count(name) > 0; }
 
-bool LoadState::is_constant(const std::string& name) const { return robot.find_constant(name) != nullptr; }
+bool LoadState::is_constant(const std::string& name) const { return constant_index.count(name) > 0; }
 
 SymbolScope LoadState::geometry_scope() const {
   SymbolScope scope;
@@ -75,7 +75,7 @@ std::optional<sym::Expr> record_entry(YamlReader& reader, LoadState& state, cons
 std::optional<int> coordinate_key(YamlReader& reader, const LoadState& state, const Located& key,
                                   std::string_view section) {
   const std::string& name = key.node.Scalar();
-  if (const auto index = state.robot.find_coordinate(name)) return index;
+  if (const auto found = state.coordinate_index.find(name); found != state.coordinate_index.end()) return found->second;
   std::vector<std::string> names;
   for (const sym::Expr& coordinate : state.robot.coordinates) names.push_back(coordinate.name());
   // Not unknown_name_message: the name may well exist, as a link or a constant, just not as a coordinate.

@@ -40,6 +40,8 @@ struct LoadState {
   RobotDescription robot;
   std::vector<ParameterUse> parameter_uses;  // in file order
   std::unordered_map<std::string, std::size_t> parameter_use_index;  // name -> index in parameter_uses
+  std::unordered_map<std::string, int> coordinate_index;             // name -> index in robot.coordinates
+  std::unordered_map<std::string, std::size_t> constant_index;       // name -> index in robot.constants
   std::vector<NominalValue> nominal_values;  // in file order
   std::vector<std::string> nominal_names;    // keys of `parameters`, read up front for better messages
   std::vector<std::string> unreadable_names;  // constants and parameters whose value was bad (already reported)

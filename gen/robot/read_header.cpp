@@ -61,12 +61,14 @@ void read_coordinates(YamlReader& reader, LoadState& state, const Located& value
   for (const Located& item : items) {
     const auto name = reader.identifier(item, "a coordinate name");
     if (!name) continue;
-    if (const auto earlier = state.robot.find_coordinate(*name)) {
+    if (const auto earlier = state.coordinate_index.find(*name); earlier != state.coordinate_index.end()) {
+      const SourceLocation first = state.robot.coordinate_locations[static_cast<std::size_t>(earlier->second)];
       reader.sink().error(item.location, item.path,
-                          fmt::format("duplicate coordinate '{}' (first given on line {})", *name,
-                                      state.robot.coordinate_locations[static_cast<std::size_t>(*earlier)].line));
+                          fmt::format("duplicate coordinate '{}' (first given at line {}, column {})", *name,
+                                      first.line, first.column));
       continue;
     }
+    state.coordinate_index.emplace(*name, static_cast<int>(state.robot.coordinates.size()));
     state.robot.coordinates.push_back(sym::symbol(*name));
     state.robot.coordinate_locations.push_back(item.location);
   }
@@ -85,6 +87,7 @@ void read_constants(YamlReader& reader, LoadState& state, const Located& value) 
       continue;
     }
     if (const auto number = reader.exact_number(item)) {
+      state.constant_index.emplace(*name, state.robot.constants.size());
       state.robot.constants.push_back(Constant{*name, sym::symbol(*name), *number, key.location});
     } else {
       state.unreadable_names.push_back(*name);

@@ -143,7 +143,7 @@ class LinkReader {
 void read_links(YamlReader& reader, LoadState& state, const Located& value) {
   if (!reader.expect_sequence(value, "a list of links, parents before children")) return;
   const std::vector<Located> entries = reader.elements(value);
-  if (entries.empty()) {
+  if (entries.empty() && value.node.size() == 0) {
     reader.sink().error(value.location, value.path, "expected at least one link, got an empty list");
     return;
   }

@@ -51,7 +51,7 @@ void resolve_parents(RobotDescription& robot, DiagnosticSink& sink) {
     const auto found = index.find(link.parent_name);
     const std::optional<int> parent = found == index.end() ? std::nullopt : std::optional<int>(found->second);
     if (!parent) {
-      const std::string suggestion = closest_match(link.parent_name, candidates);
+      const std::string suggestion = sink.saturated() ? std::string() : closest_match(link.parent_name, candidates);
       sink.error(at, field, unknown_name_message("parent link", link.parent_name, "expected 'base' or an earlier link", suggestion),
                  suggestion);
       continue;
@@ -61,10 +61,19 @@ void resolve_parents(RobotDescription& robot, DiagnosticSink& sink) {
       continue;
     }
     if (static_cast<std::size_t>(*parent) > i) {
-      const std::vector<std::string> cycle = parent_cycle(robot, index, static_cast<int>(i));
+      const std::vector<std::string> cycle =
+          sink.saturated() ? std::vector<std::string>() : parent_cycle(robot, index, static_cast<int>(i));
       if (!cycle.empty()) {
+        // Long cycles are shortened: the first few links and the way back are enough to find it.
+        constexpr std::size_t kShown = 6;
         std::string chain;
-        for (const std::string& name : cycle) chain += (chain.empty() ? "" : " -> ") + name;
+        for (std::size_t k = 0; k < cycle.size(); ++k) {
+          if (k == kShown && cycle.size() > kShown + 1) {
+            chain += fmt::format(" -> ... ({} links)", cycle.size() - 1);
+            k = cycle.size() - 1;
+          }
+          chain += (chain.empty() ? "" : " -> ") + cycle[k];
+        }
         sink.error(at, field, fmt::format("parent cycle: {}; links must form a tree rooted at 'base'", chain));
       } else {
         sink.error(at, field,
@@ -77,44 +86,52 @@ void resolve_parents(RobotDescription& robot, DiagnosticSink& sink) {
   }
 }
 
-bool link_uses(const Link& link, sym::Expr coordinate) {
-  return sym::depends_on(link.a, coordinate) || sym::depends_on(link.alpha, coordinate) ||
-         sym::depends_on(link.d, coordinate) || sym::depends_on(link.theta, coordinate);
+// Coordinates (by name) that an expression depends on.
+std::set<std::string> coordinates_in(sym::Expr expr, const std::set<std::string>& coordinate_names) {
+  std::set<std::string> found;
+  for (const sym::Expr& symbol : sym::free_symbols(expr)) {
+    if (coordinate_names.count(symbol.name()) > 0) found.insert(symbol.name());
+  }
+  return found;
+}
+
+std::set<std::string> coordinate_names(const RobotDescription& robot) {
+  std::set<std::string> names;
+  for (const sym::Expr& coordinate : robot.coordinates) names.insert(coordinate.name());
+  return names;
 }
 
 void check_coordinate_use(const RobotDescription& robot, DiagnosticSink& sink) {
+  const std::set<std::string> all = coordinate_names(robot);
+  std::set<std::string> used;
+  for (const Link& link : robot.links) {
+    for (const sym::Expr expr : {link.a, link.alpha, link.d, link.theta}) used.merge(coordinates_in(expr, all));
+  }
   for (std::size_t c = 0; c < robot.coordinates.size(); ++c) {
-    const sym::Expr coordinate = robot.coordinates[c];
-    const bool used = std::any_of(robot.links.begin(), robot.links.end(),
-                                  [&](const Link& link) { return link_uses(link, coordinate); });
-    if (!used) {
-      sink.error(robot.coordinate_locations[c], fmt::format("coordinates[{}]", c),
-                 fmt::format("coordinate '{}' is used by no link (write it in a link's theta or d)", coordinate.name()));
-    }
+    const std::string& name = robot.coordinates[c].name();
+    if (used.count(name) > 0) continue;
+    sink.error(robot.coordinate_locations[c], fmt::format("coordinates[{}]", c),
+               fmt::format("coordinate '{}' is used by no link (write it in a link's theta or d)", name));
   }
 }
 
 // Only the joint variable moves: coordinates elsewhere would contradict the joint type.
 void check_joint_variables(const RobotDescription& robot, DiagnosticSink& sink, bool expressions_complete) {
+  const std::set<std::string> all = coordinate_names(robot);
   for (std::size_t i = 0; i < robot.links.size(); ++i) {
     const Link& link = robot.links[i];
-    const std::string variable = link.joint == JointType::Revolute ? "theta" : "d";
+    const bool revolute = link.joint == JointType::Revolute;
+    const std::string variable = revolute ? "theta" : "d";
     const std::pair<const char*, sym::Expr> fixed_fields[] = {
-        {"a", link.a}, {"alpha", link.alpha}, {link.joint == JointType::Revolute ? "d" : "theta",
-                                               link.joint == JointType::Revolute ? link.d : link.theta}};
+        {"a", link.a}, {"alpha", link.alpha}, {revolute ? "d" : "theta", revolute ? link.d : link.theta}};
     for (const auto& [field, expr] : fixed_fields) {
-      const std::vector<sym::Expr> moving = sym::free_symbols(expr);
-      for (const sym::Expr& symbol : moving) {
-        if (!robot.find_coordinate(symbol.name())) continue;
-        sink.error(link.location_of(field), fmt::format("links[{}].{}", i, field),
-                   fmt::format("depends on coordinate '{}', but only {} varies at a {} joint", symbol.name(), variable,
-                               to_string(link.joint)));
-        break;
-      }
+      const std::set<std::string> moving = coordinates_in(expr, all);
+      if (moving.empty()) continue;
+      sink.error(link.location_of(field), fmt::format("links[{}].{}", i, field),
+                 fmt::format("depends on coordinate '{}', but only {} varies at a {} joint", *moving.begin(), variable,
+                             to_string(link.joint)));
     }
-    const sym::Expr joint = link.joint_expression();
-    const bool moves = std::any_of(robot.coordinates.begin(), robot.coordinates.end(),
-                                   [&](sym::Expr coordinate) { return sym::depends_on(joint, coordinate); });
+    const bool moves = !coordinates_in(link.joint_expression(), all).empty();
     if (expressions_complete && !moves && link.field_locations.count(variable) > 0) {
       sink.warning(link.location_of(variable), fmt::format("links[{}].{}", i, variable),
                    fmt::format("the joint variable depends on no coordinate: link '{}' is rigidly attached to its "
@@ -141,7 +158,7 @@ void assemble_parameters(LoadState& state, DiagnosticSink& sink) {
       sink.error(use.location, use.field,
                  fmt::format("parameter '{}' has no nominal value (add '{}: VALUE' under parameters)", use.name,
                              use.name),
-                 closest_match(use.name, unused_nominal_names));
+                 sink.saturated() ? std::string() : closest_match(use.name, unused_nominal_names));
       continue;
     }
     const NominalValue& nominal = *found->second;
@@ -152,7 +169,7 @@ void assemble_parameters(LoadState& state, DiagnosticSink& sink) {
     if (state.is_parameter(nominal.name)) continue;
     sink.warning(nominal.location, nominal.field,
                  fmt::format("nominal value for '{}', which no link, friction or rotor entry uses", nominal.name),
-                 closest_match(nominal.name, used_names));
+                 sink.saturated() ? std::string() : closest_match(nominal.name, used_names));
   }
 }
 
@@ -167,7 +184,7 @@ void resolve_loop_links(RobotDescription& robot, DiagnosticSink& sink) {
         point.link = *link;
         continue;
       }
-      const std::string suggestion = closest_match(point.link_name, candidates);
+      const std::string suggestion = sink.saturated() ? std::string() : closest_match(point.link_name, candidates);
       sink.error(point.location, fmt::format("loops[{}].points[{}].link", l, p),
                  unknown_name_message("link", point.link_name, "expected a link name or 'base'", suggestion), suggestion);
     }

@@ -1,0 +1,114 @@
+#!/usr/bin/env bash
+# Builds the libFuzzer targets (the `fuzz` CMake preset, clang) and fuzzes each for a bounded
+# time. Fails (exit 1) on any crash, sanitizer report, timeout or out-of-memory.
+#
+# Usage: fuzz/run.sh [--seconds N] [--jobs N] [--no-build] [--crashes] [TARGET...]
+#   --seconds N  fuzzing time per target (default $FUZZ_SECONDS or 60)
+#   --jobs N     build parallelism (default 2)
+#   --no-build   use the existing build/fuzz binaries
+#   --crashes    instead of fuzzing, replay the reproducers in fuzz/crashes/ and fail if any
+#                still crashes (for whoever fixes them)
+#   TARGET       fuzz_expression and/or fuzz_robot_yaml (default: both)
+# Environment passed through to the targets: DYNCC_FUZZ_WEAK_ROUNDTRIP=1 (fuzz_expression),
+# DYNCC_FUZZ_ALLOW_CATCH_ALL=1 (fuzz_robot_yaml); see fuzz/README.md.
+#
+# The seeds in fuzz/corpus/<name>/ (and robots/*.yaml for the YAML target) are read-only inputs;
+# what the fuzzer discovers goes to build/fuzz/corpus/<target>/ and is reused by the next run.
+# A failing input is written to build/fuzz/artifacts/ and the command to reproduce it printed.
+set -euo pipefail
+
+root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+seconds=${FUZZ_SECONDS:-60}
+jobs=2
+build=1
+replay=0
+targets=()
+while (($#)); do
+  case "$1" in
+    --seconds) seconds=$2; shift 2 ;;
+    --jobs) jobs=$2; shift 2 ;;
+    --no-build) build=0; shift ;;
+    --crashes) replay=1; shift ;;
+    -h|--help) sed -n '2,18p' "$0"; exit 0 ;;
+    fuzz_expression|fuzz_robot_yaml) targets+=("$1"); shift ;;
+    *) echo "run.sh: unknown argument $1" >&2; exit 2 ;;
+  esac
+done
+((${#targets[@]})) || targets=(fuzz_expression fuzz_robot_yaml)
+
+bin="$root/build/fuzz/fuzz"
+if ((build)); then
+  (cd "$root" && cmake --preset fuzz >/dev/null && cmake --build build/fuzz -j "$jobs" --target "${targets[@]}")
+fi
+
+# Per target: seed directories, dictionary, crash-file prefix, extra options.
+seeds_of() {
+  case "$1" in
+    fuzz_expression) echo "$root/fuzz/corpus/expression" ;;
+    fuzz_robot_yaml) echo "$root/fuzz/corpus/robot_yaml $root/robots" ;;
+  esac
+}
+dict_of() {
+  case "$1" in
+    fuzz_expression) echo "$root/fuzz/expression.dict" ;;
+    fuzz_robot_yaml) echo "$root/fuzz/robot_yaml.dict" ;;
+  esac
+}
+crash_prefix_of() {
+  case "$1" in
+    fuzz_expression) echo "expression-" ;;
+    fuzz_robot_yaml) echo "robot_yaml-" ;;
+  esac
+}
+options_of() {
+  case "$1" in
+    fuzz_expression) echo "-max_len=512" ;;
+    fuzz_robot_yaml) echo "-max_len=16384" ;;
+  esac
+}
+
+failed=()
+if ((replay)); then
+  for t in "${targets[@]}"; do
+    shopt -s nullglob
+    repros=("$root/fuzz/crashes/$(crash_prefix_of "$t")"*)
+    shopt -u nullglob
+    for f in "${repros[@]}"; do
+      if "$bin/$t" -runs=1 "$f" >/dev/null 2>&1; then
+        echo "fixed:       $t ${f#"$root"/}"
+      else
+        echo "still fails: $t ${f#"$root"/}   (run: build/fuzz/fuzz/$t ${f#"$root"/})"
+        failed+=("$t:${f#"$root"/}")
+      fi
+    done
+  done
+  ((${#failed[@]} == 0)) || exit 1
+  exit 0
+fi
+
+for t in "${targets[@]}"; do
+  corpus="$root/build/fuzz/corpus/$t"
+  artifacts="$root/build/fuzz/artifacts"
+  mkdir -p "$corpus" "$artifacts"
+  log="$root/build/fuzz/$t.log"
+  # shellcheck disable=SC2046  # word splitting of the seed list and options is intended
+  set +e
+  "$bin/$t" -max_total_time="$seconds" -timeout=5 -rss_limit_mb=2048 -print_final_stats=1 \
+    -dict="$(dict_of "$t")" $(options_of "$t") -artifact_prefix="$artifacts/$t-" \
+    "$corpus" $(seeds_of "$t") >"$log" 2>&1
+  status=$?
+  set -e
+  stats=$(grep -E '^stat::(number_of_executed_units|average_exec_per_sec|peak_rss_mb)' "$log" |
+          sed 's/^stat:://' | tr -s ' ' | tr '\n' ' ')
+  if ((status == 0)); then
+    echo "ok:     $t ${seconds}s  $stats"
+  else
+    echo "FAILED: $t (exit $status)  $stats"
+    grep -E '^(fuzz_|==[0-9]+==ERROR|SUMMARY|.*runtime error|terminate called|  what\(\))' "$log" | head -10 | sed 's/^/  /'
+    artifact=$(grep -oE "Test unit written to [^ ]+" "$log" | tail -1 | sed 's/Test unit written to //')
+    [[ -n $artifact ]] && echo "  reproduce: $bin/$t $artifact"
+    echo "  full log: $log"
+    failed+=("$t")
+  fi
+done
+((${#failed[@]} == 0)) || exit 1
