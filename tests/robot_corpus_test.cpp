@@ -115,7 +115,8 @@ TEST(CheckCommand, ShippedRobotsPass) {
   for (const char* robot : {"robots/kraft.yaml", "robots/planar_2link.yaml"}) {
     const RunResult result = run_check(kSource / robot, true);
     EXPECT_EQ(result.exit_code, 0) << result.output;
-    EXPECT_EQ(result.output.find("warning"), std::string::npos) << result.output;
+    EXPECT_EQ(result.output.find(": warning:"), std::string::npos) << result.output;
+    EXPECT_NE(result.output.find("(0 warnings)"), std::string::npos) << result.output;
   }
   const RunResult kraft = run_check(kSource / "robots/kraft.yaml", true);
   for (const char* expected : {"robot kraft_right", "links (5)", "forearm [revolute] theta = q3 - q2",

@@ -28,11 +28,13 @@ Matrix4 multiply(const Matrix4& a, const Matrix4& b) {
 }
 
 Matrix4 rot_x(double angle) {
-  const double c = std::cos(angle), s = std::sin(angle);
+  const double c = std::cos(angle);
+  const double s = std::sin(angle);
   return Matrix4{{{1, 0, 0, 0}, {0, c, -s, 0}, {0, s, c, 0}, {0, 0, 0, 1}}};
 }
 Matrix4 rot_z(double angle) {
-  const double c = std::cos(angle), s = std::sin(angle);
+  const double c = std::cos(angle);
+  const double s = std::sin(angle);
   return Matrix4{{{c, -s, 0, 0}, {s, c, 0, 0}, {0, 0, 1, 0}, {0, 0, 0, 1}}};
 }
 Matrix4 translate(double x, double y, double z) {
@@ -65,7 +67,10 @@ class Geometry {
 
   Matrix4 link_to_world(std::size_t index) const {
     const Link& link = robot_.links[index];
-    const double a = value(link.a), alpha = value(link.alpha), d = value(link.d), theta = value(link.theta);
+    const double a = value(link.a);
+    const double alpha = value(link.alpha);
+    const double d = value(link.d);
+    const double theta = value(link.theta);
     const Matrix4 local = robot_.convention == Convention::Modified
                               ? multiply(multiply(rot_x(alpha), translate(a, 0, 0)), multiply(rot_z(theta), translate(0, 0, d)))
                               : multiply(multiply(rot_z(theta), translate(0, 0, d)), multiply(translate(a, 0, 0), rot_x(alpha)));
@@ -92,7 +97,9 @@ TEST(RobotGeometry, KraftParallelogramClosesAndKeepsLinksParallel) {
   const RobotDescription robot = load("kraft.yaml");
   std::mt19937 random(7);
   std::uniform_real_distribution<double> angle(-std::numbers::pi, std::numbers::pi);
-  const double b1 = 0.075, b2 = 0.130, b3 = 0.10;
+  const double b1 = 0.075;
+  const double b2 = 0.130;
+  const double b3 = 0.10;
   for (int sample = 0; sample < 50; ++sample) {
     const std::vector<double> q = {angle(random), angle(random), angle(random)};
     const Geometry g(robot, q);
@@ -100,7 +107,10 @@ TEST(RobotGeometry, KraftParallelogramClosesAndKeepsLinksParallel) {
     EXPECT_LT(distance(g.point(loop.points[0].link, loop.points[0].at), g.point(loop.points[1].link, loop.points[1].at)),
               1e-12);
     // ERRATA 6-7: forearm at absolute angle q3 (parallel to the crank), coupler parallel to the upper arm.
-    const int upper_arm = 1, forearm = 2, crank = 3, coupler = 4;
+    const int upper_arm = 1;
+    const int forearm = 2;
+    const int crank = 3;
+    const int coupler = 4;
     EXPECT_LT(distance(g.axis(forearm, 0), g.axis(crank, 0)), 1e-12);
     EXPECT_LT(distance(g.axis(coupler, 0), g.axis(upper_arm, 0)), 1e-12);
     // Elevation: the upper arm's x axis points down for positive q2 (it is (c2, 0, -s2) in the yaw frame).
@@ -121,7 +131,8 @@ TEST(RobotGeometry, KraftParallelogramClosesAndKeepsLinksParallel) {
 
 TEST(RobotGeometry, PlanarTwoLinkTipFollowsTheTextbook) {
   const RobotDescription robot = load("planar_2link.yaml");
-  const double l1 = 1.0, l2 = 0.8;
+  const double l1 = 1.0;
+  const double l2 = 0.8;
   for (const auto& q : std::vector<std::vector<double>>{{0.3, -0.7}, {1.2, 0.4}, {-2.0, 2.5}}) {
     const Geometry g(robot, q);
     const Vector3 tip = g.origin(1);

@@ -19,7 +19,7 @@
 namespace dyncc::sym {
 namespace {
 
-struct Run {
+struct CliRun {
   int exit_code = -1;
   std::string out;
 };
@@ -31,9 +31,9 @@ std::string quote(const std::string& s) {
 }
 
 // Runs dyncc with the given (already quoted) arguments; `timeout` turns a hang into a failure.
-Run dyncc(const std::string& args, bool with_stderr = true) {
+CliRun dyncc(const std::string& args, bool with_stderr = true) {
   const std::string command = "timeout 60 " + quote(DYNCC_BINARY) + " " + args + (with_stderr ? " 2>&1" : " 2>/dev/null");
-  Run r;
+  CliRun r;
   FILE* pipe = popen(command.c_str(), "r");
   if (pipe == nullptr) return r;
   char buffer[4096];
@@ -54,13 +54,13 @@ class SymCli : public ::testing::Test {
 };
 
 TEST_F(SymCli, ZeroProvesAnIdentity) {
-  const Run r = dyncc("expr zero " + quote("sin(q1 + q2) - sin(q1)*cos(q2) - cos(q1)*sin(q2)"));
+  const CliRun r = dyncc("expr zero " + quote("sin(q1 + q2) - sin(q1)*cos(q2) - cos(q1)*sin(q2)"));
   EXPECT_EQ(r.exit_code, 0) << r.out;
   EXPECT_EQ(trimmed(r.out), "identically zero");
 }
 
 TEST_F(SymCli, ZeroRefutesANonIdentityWithAWitness) {
-  const Run r = dyncc("expr zero " + quote("sin(2*x) - 2*sin(x)"));
+  const CliRun r = dyncc("expr zero " + quote("sin(2*x) - 2*sin(x)"));
   EXPECT_EQ(r.exit_code, 1) << r.out;
   EXPECT_NE(r.out.find("not identically zero"), std::string::npos) << r.out;
   std::smatch m;
@@ -72,19 +72,19 @@ TEST_F(SymCli, ZeroRefutesANonIdentityWithAWitness) {
 }
 
 TEST_F(SymCli, ZeroNeverCallsRoundingNoiseAWitness) {
-  const Run r = dyncc("expr zero " + quote("(sqrt((x + 10)^2) - sqrt(x^2 + 20*x + 100))*(x + 10)^8"));
+  const CliRun r = dyncc("expr zero " + quote("(sqrt((x + 10)^2) - sqrt(x^2 + 20*x + 100))*(x + 10)^8"));
   EXPECT_EQ(r.exit_code, 1) << r.out;
   EXPECT_EQ(r.out.find("not identically zero"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("undecided"), std::string::npos) << r.out;
 }
 
 TEST_F(SymCli, DiffPrintsTheDerivative) {
-  const Run r = dyncc("expr diff x " + quote("x*sin(x) + x^3/3"), false);
+  const CliRun r = dyncc("expr diff x " + quote("x*sin(x) + x^3/3"), false);
   ASSERT_EQ(r.exit_code, 0) << r.out;
   const Expr x = symbol("x");
   EXPECT_EQ(parse_or_throw(trimmed(r.out)), sin(x) + x * cos(x) + x * x) << r.out;  // derived by hand
 
-  const Run a = dyncc("expr diff q1 " + quote("atan2(q1, 1 + q2^2)"), false);
+  const CliRun a = dyncc("expr diff q1 " + quote("atan2(q1, 1 + q2^2)"), false);
   ASSERT_EQ(a.exit_code, 0) << a.out;
   const Expr d = parse_or_throw(trimmed(a.out));
   for (const double q1 : {-1.3, 0.2, 2.0}) {
@@ -94,7 +94,7 @@ TEST_F(SymCli, DiffPrintsTheDerivative) {
       EXPECT_NEAR(evaluate(d, values), c / (c * c + q1 * q1), 1e-12);
     }
   }
-  const Run latex = dyncc("expr diff x --latex " + quote("sin(x^2)"), false);
+  const CliRun latex = dyncc("expr diff x --latex " + quote("sin(x^2)"), false);
   EXPECT_EQ(latex.exit_code, 0);
   EXPECT_NE(latex.out.find("\\cos"), std::string::npos) << latex.out;
   EXPECT_EQ(dyncc("expr diff 2 " + quote("x")).exit_code, 2);
@@ -102,13 +102,13 @@ TEST_F(SymCli, DiffPrintsTheDerivative) {
 }
 
 TEST_F(SymCli, EvalPrintsTheValue) {
-  const Run r = dyncc("expr eval " + quote("x*y + 1/3") + " x=2 y=0.5", false);
+  const CliRun r = dyncc("expr eval " + quote("x*y + 1/3") + " x=2 y=0.5", false);
   ASSERT_EQ(r.exit_code, 0) << r.out;
   EXPECT_EQ(std::stod(r.out), 2 * 0.5 + 1.0 / 3.0);
-  const Run t = dyncc("expr eval " + quote("sin(q1)^2 + cos(q2)") + " q1=pi/6 q2=1/4", false);
+  const CliRun t = dyncc("expr eval " + quote("sin(q1)^2 + cos(q2)") + " q1=pi/6 q2=1/4", false);
   ASSERT_EQ(t.exit_code, 0) << t.out;
   EXPECT_NEAR(std::stod(t.out), std::pow(std::sin(std::numbers::pi / 6), 2) + std::cos(0.25), 1e-15);
-  const Run missing = dyncc("expr eval " + quote("x + y") + " x=1");
+  const CliRun missing = dyncc("expr eval " + quote("x + y") + " x=1");
   EXPECT_EQ(missing.exit_code, 2);
   EXPECT_NE(missing.out.find("no value given for 'y'"), std::string::npos) << missing.out;
   EXPECT_EQ(dyncc("expr eval x x").exit_code, 2);
@@ -117,15 +117,15 @@ TEST_F(SymCli, EvalPrintsTheValue) {
 }
 
 TEST_F(SymCli, SimplifyAndExpand) {
-  const Run s = dyncc("expr simplify " + quote("sin(x)^2 + cos(x)^2"), false);
+  const CliRun s = dyncc("expr simplify " + quote("sin(x)^2 + cos(x)^2"), false);
   EXPECT_EQ(s.exit_code, 0);
   EXPECT_EQ(trimmed(s.out), "1");
-  const Run e = dyncc("expr expand " + quote("(x + 1)^3"), false);
+  const CliRun e = dyncc("expr expand " + quote("(x + 1)^3"), false);
   ASSERT_EQ(e.exit_code, 0);
   const Expr x = symbol("x");
   EXPECT_EQ(parse_or_throw(trimmed(e.out)), x * x * x + Expr(3) * x * x + Expr(3) * x + Expr(1)) << e.out;
   // Extreme input must neither hang nor crash.
-  const Run big = dyncc("expr simplify " + quote("sqrt(9223372036854775807)"), false);
+  const CliRun big = dyncc("expr simplify " + quote("sqrt(9223372036854775807)"), false);
   EXPECT_EQ(big.exit_code, 0);
   EXPECT_EQ(trimmed(big.out), "sqrt(9223372036854775807)");
 }
@@ -137,24 +137,24 @@ TEST_F(SymCli, ParseErrorsExitTwoWithTheColumn) {
   };
   for (const Case& c : {Case{"1/(x", "EXPR:1:5: error: expected ')'"}, Case{"x $ y", "EXPR:1:3: error:"}, Case{"2x", "EXPR:1:2: error:"}}) {
     for (const char* sub : {"zero", "simplify", "expand", "eval"}) {
-      const Run r = dyncc(std::string("expr ") + sub + " " + quote(c.text));
+      const CliRun r = dyncc(std::string("expr ") + sub + " " + quote(c.text));
       EXPECT_EQ(r.exit_code, 2) << sub << " " << c.text << "\n" << r.out;
       EXPECT_NE(r.out.find(c.location), std::string::npos) << r.out;
     }
   }
   // The caret sits under the column.
-  const Run r = dyncc("expr zero " + quote("1/(x"));
+  const CliRun r = dyncc("expr zero " + quote("1/(x"));
   EXPECT_NE(r.out.find("\n  1/(x\n      ^"), std::string::npos) << r.out;
 }
 
 TEST_F(SymCli, VersionHelpAndUsage) {
-  const Run v = dyncc("--version");
+  const CliRun v = dyncc("--version");
   EXPECT_EQ(v.exit_code, 0);
   EXPECT_TRUE(std::regex_search(v.out, std::regex(R"(dyncc \d+\.\d+)"))) << v.out;
-  const Run h = dyncc("--help");
+  const CliRun h = dyncc("--help");
   EXPECT_EQ(h.exit_code, 0);
   EXPECT_NE(h.out.find("expr"), std::string::npos) << h.out;
-  const Run eh = dyncc("expr --help");
+  const CliRun eh = dyncc("expr --help");
   EXPECT_EQ(eh.exit_code, 0);
   EXPECT_NE(eh.out.find("zero"), std::string::npos) << eh.out;
   EXPECT_EQ(dyncc("").exit_code, 2);

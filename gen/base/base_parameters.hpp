@@ -1,11 +1,13 @@
 // Base (identifiable) parameters: the independent combinations of standard parameters that
 // the torque actually depends on.
 //
-// Found numerically, then made exact: columns of the regressor stacked over random states are
-// taken in standard-parameter order and kept when they add rank (so a later link's mass folds
-// into an earlier link's first moment, as in p13 = m2*x2 + 0.18*m3 + m4*x4); every other
-// column's coefficients on the kept ones are recovered as exact rationals and the regrouping is
-// then PROVED with the trigonometric normal form (Y_d - sum_b beta_db Y_b == 0 symbolically).
+// Found by EXACT linear algebra: the regressor is evaluated at random points over two prime
+// fields (sin/cos from rational points of the unit circle, so every value is exact), columns are
+// taken link by link and kept when they add rank (so a later link's mass folds into an earlier
+// link's first moment, as in p13 = m2*x2 + 0.18*m3 + m4*x4), and each other column's
+// coefficients on the kept ones are solved modulo both primes and lifted to rationals (CRT and
+// rational reconstruction). Each regrouping identity Y_d == sum_b beta_db Y_b is then proved
+// with the trigonometric normal form (small arms) or checked exactly at fresh random points.
 #pragma once
 
 #include <Eigen/Dense>
@@ -32,6 +34,7 @@ struct BaseParameterSet {
   bool exact = true;               // every coefficient was recovered as a rational
   bool proved = true;              // the regrouping identities were proved symbolically
   std::string note;                // what was not exact or proved, if anything
+  std::string proof;               // how the regrouping identities were established
   double relative_residual = 0.0;  // max |Y_d - Y_B beta_d| / |Y_d| over the samples
 
   /// Values of the base parameters for standard parameter values.
@@ -40,7 +43,8 @@ struct BaseParameterSet {
 
 struct BaseParameterOptions {
   int samples = 0;         // regressor samples to stack; 0 = automatic
-  bool prove = true;       // symbolic proof of each regrouping
+  bool prove = true;       // prove each regrouping identity
+  std::size_t symbolic_proof_max_dof = 4;  // above: exact randomised check over GF(p) instead
 };
 
 BaseParameterSet find_base_parameters(const robot::RobotDescription& robot, const dyn::DynamicModel& model,

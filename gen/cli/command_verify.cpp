@@ -163,7 +163,7 @@ int run_verify(const VerifyOptions& o) {
   }
   // base parameters
   checks.push_back({"base parameters", d->base.proved, fmt::format("{} of {} standard", d->base.list.size(), d->model.params.list.size()),
-                    d->base.proved ? "regrouping proved symbolically" : d->base.note});
+                    d->base.proved ? d->base.proof : d->base.note});
 
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   bool all = true;

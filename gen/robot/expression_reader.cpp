@@ -46,7 +46,7 @@ std::optional<sym::Expr> read_expression(YamlReader& reader, const Located& valu
   }
   bool all_known = true;
   for (const sym::SymbolUse& use : parsed.symbols) {
-    if (scope.names.count(use.name) > 0) continue;
+    if (scope.names.contains(use.name)) continue;
     all_known = false;
     const SourceLocation at = point_inside(position, use.column);
     if (const auto known = scope.forbidden.find(use.name); known != scope.forbidden.end()) {

@@ -51,7 +51,7 @@ void read_document(YamlReader& reader, LoadState& state, const YAML::Node& docum
   if (!reader.expect_map(root, "a robot description with name, convention, gravity, coordinates and links")) return;
   const auto top = reader.fields(root, kTopLevelFields);
   for (const char* required : {"name", "convention", "gravity", "coordinates", "links"}) {
-    if (top.count(required) == 0) {
+    if (!top.contains(required)) {
       reader.sink().error(root.location, "", std::string("missing required field '") + required + "'");
     }
   }
@@ -70,7 +70,7 @@ void read_document(YamlReader& reader, LoadState& state, const YAML::Node& docum
   section("parameters", detail::read_parameters);
   section("loops", detail::read_loops);
   section("base_parameters", detail::read_base_parameters);
-  if (top.count("links") > 0) detail::validate(state, reader.sink());
+  if (top.contains("links")) detail::validate(state, reader.sink());
 }
 
 }  // namespace

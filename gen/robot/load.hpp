@@ -23,7 +23,7 @@ struct LoadResult {
 };
 
 /// Largest file accepted: a hand-written description is a few kB; anything near this is a mistake.
-inline constexpr std::size_t kMaxFileSize = 1024 * 1024;
+inline constexpr std::size_t kMaxFileSize = std::size_t{1024} * 1024;
 
 /// Reads, parses and validates a robot description. Never throws for bad input: every problem
 /// (unreadable file, YAML syntax, schema, names, expressions, physics) becomes a diagnostic.

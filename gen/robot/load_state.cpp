@@ -8,9 +8,9 @@
 
 namespace dyncc::robot::detail {
 
-bool LoadState::is_coordinate(const std::string& name) const { return coordinate_index.count(name) > 0; }
+bool LoadState::is_coordinate(const std::string& name) const { return coordinate_index.contains(name); }
 
-bool LoadState::is_constant(const std::string& name) const { return constant_index.count(name) > 0; }
+bool LoadState::is_constant(const std::string& name) const { return constant_index.contains(name); }
 
 SymbolScope LoadState::geometry_scope() const {
   SymbolScope scope;
@@ -33,7 +33,7 @@ SymbolScope LoadState::base_parameter_scope() const {
     scope.forbidden.emplace(coordinate.name(), "a coordinate (base parameters do not depend on the motion)");
   }
   for (const std::string& name : nominal_names) {
-    if (scope.names.count(name) == 0) {
+    if (!scope.names.contains(name)) {
       scope.forbidden.emplace(name, "given a nominal value but used in no link, friction or rotor entry");
     }
   }

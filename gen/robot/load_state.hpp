@@ -53,7 +53,7 @@ struct LoadState {
   [[nodiscard]] SymbolScope base_parameter_scope() const;
   [[nodiscard]] bool is_coordinate(const std::string& name) const;
   [[nodiscard]] bool is_constant(const std::string& name) const;
-  [[nodiscard]] bool is_parameter(const std::string& name) const { return parameter_use_index.count(name) > 0; }
+  [[nodiscard]] bool is_parameter(const std::string& name) const { return parameter_use_index.contains(name); }
 };
 
 /// Turns a NumberOrName entry into an Expr: a number, or a parameter symbol whose use is

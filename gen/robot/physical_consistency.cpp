@@ -68,8 +68,12 @@ class ConsistencyChecker {
       report(link.location_of("mass"), prefix + ".mass", fmt::format("negative mass ({} kg)", *mass));
     }
     const InertiaTensor& t = link.inertia;
-    const auto xx = value_of(t.xx), yy = value_of(t.yy), zz = value_of(t.zz);
-    const auto xy = value_of(t.xy), xz = value_of(t.xz), yz = value_of(t.yz);
+    const auto xx = value_of(t.xx);
+    const auto yy = value_of(t.yy);
+    const auto zz = value_of(t.zz);
+    const auto xy = value_of(t.xy);
+    const auto xz = value_of(t.xz);
+    const auto yz = value_of(t.yz);
     if (!xx || !yy || !zz || !xy || !xz || !yz) return;  // a missing nominal value is reported elsewhere
     const SourceLocation at = link.location_of("inertia");
     const std::string field = prefix + ".inertia";
@@ -97,7 +101,7 @@ class ConsistencyChecker {
       report(at, field, "the inertia tensor's principal moments could not be computed");
       return;
     }
-    const Eigen::Vector3d moments = solver.eigenvalues();  // ascending
+    const Eigen::Vector3d& moments = solver.eigenvalues();  // ascending
     if (moments[0] < -tolerance) {
       report(at, field,
              fmt::format("the inertia tensor is not positive semi-definite (principal moments {:.6g}, {:.6g}, "
@@ -111,7 +115,7 @@ class ConsistencyChecker {
                          moments[1], moments[2]));
       return;
     }
-    const bool mass_written = link.field_locations.count("mass") > 0;  // else "missing mass" was reported
+    const bool mass_written = link.field_locations.contains("mass");  // else "missing mass" was reported
     if (mass_written && mass && *mass == 0.0 && scale > 0.0) {
       report(at, field, "a link with zero mass cannot have a nonzero inertia");
     }

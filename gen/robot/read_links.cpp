@@ -86,7 +86,7 @@ class LinkReader {
     // The joint variable is never assumed (a default would silently pick a coordinate).
     if (joint_known_) {
       const char* variable = link_.joint == JointType::Revolute ? "theta" : "d";
-      if (fields_.count(variable) == 0) {
+      if (!fields_.contains(variable)) {
         reader_.sink().error(link_.location, path(),
                              fmt::format("missing required field '{}' (the joint variable of a {} link, e.g. '{}: "
                                          "q1'; write it even when it is just a coordinate)",

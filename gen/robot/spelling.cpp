@@ -8,7 +8,9 @@ namespace dyncc::robot {
 std::size_t edit_distance(std::string_view a, std::string_view b) {
   // Three rolling rows: the swap rule looks two rows back.
   const std::size_t width = b.size() + 1;
-  std::vector<std::size_t> before(width), previous(width), current(width);
+  std::vector<std::size_t> before(width);
+  std::vector<std::size_t> previous(width);
+  std::vector<std::size_t> current(width);
   for (std::size_t j = 0; j < width; ++j) previous[j] = j;
   for (std::size_t i = 1; i <= a.size(); ++i) {
     current[0] = i;

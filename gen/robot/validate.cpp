@@ -90,7 +90,7 @@ void resolve_parents(RobotDescription& robot, DiagnosticSink& sink) {
 std::set<std::string> coordinates_in(sym::Expr expr, const std::set<std::string>& coordinate_names) {
   std::set<std::string> found;
   for (const sym::Expr& symbol : sym::free_symbols(expr)) {
-    if (coordinate_names.count(symbol.name()) > 0) found.insert(symbol.name());
+    if (coordinate_names.contains(symbol.name())) found.insert(symbol.name());
   }
   return found;
 }
@@ -109,7 +109,7 @@ void check_coordinate_use(const RobotDescription& robot, DiagnosticSink& sink) {
   }
   for (std::size_t c = 0; c < robot.coordinates.size(); ++c) {
     const std::string& name = robot.coordinates[c].name();
-    if (used.count(name) > 0) continue;
+    if (used.contains(name)) continue;
     sink.error(robot.coordinate_locations[c], fmt::format("coordinates[{}]", c),
                fmt::format("coordinate '{}' is used by no link (write it in a link's theta or d)", name));
   }
@@ -132,7 +132,7 @@ void check_joint_variables(const RobotDescription& robot, DiagnosticSink& sink, 
                              to_string(link.joint)));
     }
     const bool moves = !coordinates_in(link.joint_expression(), all).empty();
-    if (expressions_complete && !moves && link.field_locations.count(variable) > 0) {
+    if (expressions_complete && !moves && link.field_locations.contains(variable)) {
       sink.warning(link.location_of(variable), fmt::format("links[{}].{}", i, variable),
                    fmt::format("the joint variable depends on no coordinate: link '{}' is rigidly attached to its "
                                "parent",
@@ -153,7 +153,7 @@ void assemble_parameters(LoadState& state, DiagnosticSink& sink) {
   const std::set<std::string> unreadable(state.unreadable_names.begin(), state.unreadable_names.end());
   for (const ParameterUse& use : state.parameter_uses) {
     const auto found = nominal_by_name.find(use.name);
-    if (found == nominal_by_name.end() && unreadable.count(use.name) > 0) continue;  // its bad value was reported
+    if (found == nominal_by_name.end() && unreadable.contains(use.name)) continue;  // its bad value was reported
     if (found == nominal_by_name.end()) {
       sink.error(use.location, use.field,
                  fmt::format("parameter '{}' has no nominal value (add '{}: VALUE' under parameters)", use.name,

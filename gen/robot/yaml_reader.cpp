@@ -2,6 +2,7 @@
 
 #include <fmt/core.h>
 
+#include <algorithm>
 #include <array>
 #include <cctype>
 #include <charconv>
@@ -63,22 +64,19 @@ bool is_non_finite_spelling(std::string_view text) {
   static const std::set<std::string> spellings = {".nan", "nan", ".inf", "inf", "infinity"};
   std::string_view body = text;
   if (!body.empty() && (body.front() == '+' || body.front() == '-')) body.remove_prefix(1);
-  return spellings.count(lowercase(body)) > 0;
+  return spellings.contains(lowercase(body));
 }
 
 bool is_identifier(std::string_view text) {
   if (text.empty() || text.size() > 100) return false;
   const auto start = [](char c) { return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || c == '_'; };
   if (!start(text.front())) return false;
-  for (const char c : text) {
-    if (!start(c) && !is_digit(c)) return false;
-  }
-  return true;
+  return std::all_of(text.begin(), text.end(), [&](char c) { return start(c) || is_digit(c); });
 }
 
 bool is_reserved_word(std::string_view text) {
   static const std::set<std::string_view> reserved = {"pi", "sin", "cos", "sqrt", "atan2"};
-  return reserved.count(text) > 0 || is_non_finite_spelling(text);
+  return reserved.contains(text) || is_non_finite_spelling(text);
 }
 
 std::string_view node_kind_name(const YAML::Node& node) {
@@ -194,7 +192,7 @@ std::map<std::string, Located> YamlReader::fields(const Located& map, const std:
 
 bool YamlReader::require(const std::map<std::string, Located>& fields, const Located& map, const std::string& key,
                          std::string_view why) {
-  if (fields.count(key) > 0) return true;
+  if (fields.contains(key)) return true;
   std::string message = fmt::format("missing required field '{}'", key);
   if (!why.empty()) message += fmt::format(" ({})", why);
   sink_.error(map.location, map.path, std::move(message));
