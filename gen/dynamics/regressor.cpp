@@ -13,13 +13,11 @@ Regressor derive_regressor(const DynamicModel& model) {
     for (std::size_t j = 0; j < n; ++j) tau += model.H[i][j] * model.a[j] + model.C[i][j] * model.v[j];
     r.rigid_body_torque[i] = tau;
   }
-  const auto& params = model.params.list;
-  r.rows.assign(n, std::vector<sym::Expr>(params.size()));
-  for (std::size_t l = 0; l < params.size(); ++l) {
-    if (params[l].kind == StandardKind::FC || params[l].kind == StandardKind::FV) continue;
-    sym::Differentiator d(params[l].symbol);
-    for (std::size_t i = 0; i < n; ++i) r.rows[i][l] = d(r.rigid_body_torque[i]);
-  }
+  // One reverse sweep per row gives the derivative by every parameter at once. Friction
+  // symbols do not occur in the rigid-body torque, so their columns come out 0.
+  const std::vector<sym::Expr> symbols = model.params.symbols();
+  r.rows.resize(n);
+  for (std::size_t i = 0; i < n; ++i) r.rows[i] = sym::gradient(r.rigid_body_torque[i], symbols);
   return r;
 }
 

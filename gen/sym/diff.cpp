@@ -65,3 +65,71 @@ Expr Differentiator::operator()(Expr e) {
 Expr diff(Expr e, Expr var) { return Differentiator(var)(e); }
 
 }  // namespace dyncc::sym
+
+namespace dyncc::sym {
+
+std::vector<Expr> gradient(Expr f, std::span<const Expr> vars) {
+  // Post-order of the nodes that depend on some variable.
+  std::unordered_map<const Node*, int> var_index;
+  for (std::size_t i = 0; i < vars.size(); ++i) var_index.emplace(vars[i].node(), static_cast<int>(i));
+  std::unordered_map<const Node*, bool> depends;
+  std::vector<Expr> order;
+  std::vector<std::pair<Expr, bool>> stack{{f, false}};
+  while (!stack.empty()) {
+    auto [e, ready] = stack.back();
+    stack.pop_back();
+    if (depends.contains(e.node())) continue;
+    if (!ready) {
+      stack.emplace_back(e, true);
+      for (const Expr a : e.args()) {
+        if (!depends.contains(a.node())) stack.emplace_back(a, false);
+      }
+      continue;
+    }
+    bool d = var_index.contains(e.node());
+    for (const Expr a : e.args()) d = d || depends.at(a.node());
+    depends.emplace(e.node(), d);
+    if (d) order.push_back(e);
+  }
+  // Adjoint contributions, summed once when a node is reached (parents come first in reverse order).
+  std::unordered_map<const Node*, std::vector<Expr>> contributions;
+  contributions[f.node()].push_back(Expr(1));
+  std::vector<Expr> result(vars.size(), Expr(0));
+  for (auto it = order.rbegin(); it != order.rend(); ++it) {
+    const Expr e = *it;
+    const auto found = contributions.find(e.node());
+    if (found == contributions.end()) continue;
+    const Expr adj = add(found->second);
+    contributions.erase(found);
+    if (adj.is_zero()) continue;
+    if (const auto v = var_index.find(e.node()); v != var_index.end()) result[static_cast<std::size_t>(v->second)] = adj;
+    const auto args = e.args();
+    auto push = [&](Expr child, Expr partial) {
+      if (depends.at(child.node())) contributions[child.node()].push_back(adj * partial);
+    };
+    switch (e.kind()) {
+      case Kind::Add:
+        for (std::size_t i = 0; i < args.size(); ++i) push(args[i], number(e.weights()[i]));
+        break;
+      case Kind::Mul:
+        for (std::size_t i = 0; i < args.size(); ++i) {
+          if (!depends.at(args[i].node())) continue;
+          push(args[i], number(e.weights()[i]) * e / args[i]);
+        }
+        break;
+      case Kind::Sin: push(args[0], cos(args[0])); break;
+      case Kind::Cos: push(args[0], -sin(args[0])); break;
+      case Kind::Sqrt: push(args[0], Expr(1) / (Expr(2) * e)); break;
+      case Kind::Atan2: {
+        const Expr r2 = args[0] * args[0] + args[1] * args[1];
+        push(args[0], args[1] / r2);
+        push(args[1], -args[0] / r2);
+        break;
+      }
+      default: break;
+    }
+  }
+  return result;
+}
+
+}  // namespace dyncc::sym

@@ -1,7 +1,9 @@
 // Exact differentiation over the DAG.
 #pragma once
 
+#include <span>
 #include <unordered_map>
+#include <vector>
 
 #include "sym/expr.hpp"
 
@@ -21,5 +23,14 @@ class Differentiator {
 };
 
 Expr diff(Expr e, Expr var);
+
+}  // namespace dyncc::sym
+
+namespace dyncc::sym {
+
+/// All partial derivatives of f with respect to vars in ONE reverse (adjoint) sweep over the
+/// DAG: d f / d vars[i]. Much cheaper than one forward derivative per variable when there are
+/// many variables (e.g. the regressor: the torque differentiated by every parameter).
+std::vector<Expr> gradient(Expr f, std::span<const Expr> vars);
 
 }  // namespace dyncc::sym

@@ -96,7 +96,24 @@ ModularFunction::ModularFunction(std::span<const Expr> outputs, std::span<const 
   }
 }
 
+const ModularFunction::BoundConstants& ModularFunction::bind(const PrimeField& f) const {
+  for (const auto& [prime, constants] : bound_) {
+    if (prime == f.prime()) return constants;
+  }
+  BoundConstants b;
+  b.values.reserve(instructions_.size());
+  for (const Instruction& ins : instructions_) b.values.push_back(ins.kind == Kind::Number || ins.kind == Kind::Add || ins.kind == Kind::Mul ? f.from(ins.value) : 0);
+  b.coefficients.assign(operands_.size(), 0);
+  for (const Instruction& ins : instructions_) {
+    if (ins.kind != Kind::Add) continue;
+    for (std::uint32_t i = 0; i < ins.count; ++i) b.coefficients[ins.first + i] = f.from(operands_[ins.first + i].coefficient);
+  }
+  bound_.emplace_back(f.prime(), std::move(b));
+  return bound_.back().second;
+}
+
 std::vector<std::uint64_t> ModularFunction::evaluate(const PrimeField& f, const ModularPoint& pt) const {
+  const BoundConstants& bound = bind(f);
   std::vector<std::uint64_t> slots(inputs_ + instructions_.size());
   for (std::size_t i = 0; i < inputs_; ++i) slots[i] = pt.value[i];
   for (std::size_t k = 0; k < instructions_.size(); ++k) {
@@ -104,17 +121,21 @@ std::vector<std::uint64_t> ModularFunction::evaluate(const PrimeField& f, const 
     const Operand* ops = operands_.data() + ins.first;
     std::uint64_t r = 0;
     switch (ins.kind) {
-      case Kind::Number: r = f.from(ins.value); break;
+      case Kind::Number: r = bound.values[k]; break;
       case Kind::Add:
-        r = f.from(ins.value);
-        for (std::uint32_t i = 0; i < ins.count; ++i) r = f.add(r, f.mul(f.from(ops[i].coefficient), slots[ops[i].slot]));
+        r = bound.values[k];
+        for (std::uint32_t i = 0; i < ins.count; ++i) r = f.add(r, f.mul(bound.coefficients[ins.first + i], slots[ops[i].slot]));
         break;
       case Kind::Mul:
-        r = f.from(ins.value);
+        r = bound.values[k];
         for (std::uint32_t i = 0; i < ins.count; ++i) {
           const std::int64_t e = ops[i].coefficient.num();
           const std::uint64_t b = slots[ops[i].slot];
-          r = f.mul(r, e >= 0 ? f.pow(b, static_cast<std::uint64_t>(e)) : f.inv(f.pow(b, static_cast<std::uint64_t>(-e))));
+          if (e == 1) {
+            r = f.mul(r, b);
+          } else {
+            r = f.mul(r, e >= 0 ? f.pow(b, static_cast<std::uint64_t>(e)) : f.inv(f.pow(b, static_cast<std::uint64_t>(-e))));
+          }
         }
         break;
       case Kind::Sin:

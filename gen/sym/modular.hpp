@@ -73,8 +73,17 @@ class ModularFunction {
     std::uint32_t slot;    // input or instruction slot; for sin/cos: the symbol's input index
     Rational coefficient;  // Add coefficient | Mul exponent | sin/cos integer multiple
   };
+  // Field images of the exact constants, per prime, converted on first use: a conversion
+  // costs a modular inverse, far more than the evaluation itself.
+  struct BoundConstants {
+    std::vector<std::uint64_t> values;        // per instruction
+    std::vector<std::uint64_t> coefficients;  // per operand (Add coefficients only)
+  };
+  const BoundConstants& bind(const PrimeField& field) const;
+
   std::vector<Instruction> instructions_;
   std::vector<Operand> operands_;
+  mutable std::vector<std::pair<std::uint64_t, BoundConstants>> bound_;
   std::vector<std::uint32_t> output_slots_;
   std::size_t inputs_ = 0;
 };
