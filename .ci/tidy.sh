@@ -62,7 +62,10 @@ EOF
 ((${#files[@]})) || { echo "tidy.sh: no matching sources in $build/compile_commands.json" >&2; exit 2; }
 echo "tidy.sh: $tidy on ${#files[@]} files with $jobs jobs" >&2
 
-log="$build/clang-tidy.log"
+# A private log while running (several people may run this on one build tree); the last run's
+# log is then kept as BUILD_DIR/clang-tidy.log.
+log=$(mktemp "${TMPDIR:-/tmp}/dyncc-tidy.XXXXXX")
+trap 'cp -f "$log" "$build/clang-tidy.log" 2>/dev/null; rm -f "$log"' EXIT
 status=0
 runner=$(command -v "run-${tidy}" || true)
 [[ -n $runner ]] || runner=$(command -v run-clang-tidy-14 || true)
@@ -84,8 +87,9 @@ import collections, re, sys
 log, root = sys.argv[1], sys.argv[2]
 pat = re.compile(r'^(/[^:]+):(\d+):(\d+): (warning|error): (.*?) \[([^\]]+)\]$')
 seen, findings = set(), []
+ansi = re.compile(r'\x1b\[[0-9;]*m')  # run-clang-tidy asks clang-tidy for colour
 for line in open(log, errors='replace'):
-    m = pat.match(line.rstrip('\n'))
+    m = pat.match(ansi.sub('', line).rstrip('\n'))
     if not m:
         continue
     path, ln, col, _, msg, checks = m.groups()
@@ -109,8 +113,8 @@ EOF
 if ((summary == 0 && status != 0)); then
   # clang-tidy failed without a parsable finding (e.g. a file that does not compile): show why.
   grep -E 'error|Error' "$log" | head -20 >&2
-  echo "tidy.sh: clang-tidy failed (exit $status); full log: $log" >&2
+  echo "tidy.sh: clang-tidy failed (exit $status); full log: $build/clang-tidy.log" >&2
   exit 1
 fi
-if ((summary != 0)); then echo "tidy.sh: findings above; full log: $log" >&2; exit 1; fi
+if ((summary != 0)); then echo "tidy.sh: findings above; full log: $build/clang-tidy.log" >&2; exit 1; fi
 echo "tidy.sh: clean" >&2

@@ -88,7 +88,12 @@ inline std::vector<Link> make_chain(int n, const std::string& suffix) {
     l.qd = s("qd", i);
     l.m = s("m", i);
     l.h = {s("mx", i), s("my", i), s("mz", i)};
-    const Expr xx = s("xx", i), xy = s("xy", i), xz = s("xz", i), yy = s("yy", i), yz = s("yz", i), zz = s("zz", i);
+    const Expr xx = s("xx", i);
+    const Expr xy = s("xy", i);
+    const Expr xz = s("xz", i);
+    const Expr yy = s("yy", i);
+    const Expr yz = s("yz", i);
+    const Expr zz = s("zz", i);
     l.I = {Vec3{xx, xy, xz}, Vec3{xy, yy, yz}, Vec3{xz, yz, zz}};
     chain.push_back(l);
   }

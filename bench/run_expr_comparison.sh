@@ -10,7 +10,8 @@
 #   --timeout       CPU-second limit per SymPy run of a main task (default 120)
 #   --side-timeout  CPU-second limit per run of the slower, context-only SymPy zero tests (default 30)
 #   --no-doc        print the table, leave docs/performance.md alone
-# Raw results stay in build/release/expr_comparison/. Takes about 6-8 minutes (mostly SymPy).
+# Raw results stay in build/release/expr_comparison/. About 5 CPU-minutes, mostly SymPy (12 minutes
+# wall on a loaded 2-core machine).
 set -euo pipefail
 
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -28,7 +29,7 @@ while [[ $# -gt 0 ]]; do
     --timeout) TIMEOUT="$2"; shift 2 ;;
     --side-timeout) SIDE_TIMEOUT="$2"; shift 2 ;;
     --no-doc) WRITE_DOC=0; shift ;;
-    -h|--help) sed -n '2,14p' "$0"; exit 0 ;;
+    -h|--help) sed -n '2,13p' "$0"; exit 0 ;;
     *) echo "unknown argument: $1" >&2; exit 2 ;;
   esac
 done

@@ -48,8 +48,8 @@ bool allow_catch_all() {
 
 void check_diagnostics(std::string_view text, const LoadResult& r) {
   if (r.ok() != (r.error_count() == 0)) {
-    fail(text, "ok() is " + std::string(r.ok() ? "true" : "false") + " with " + std::to_string(r.error_count()) +
-                   " errors");
+    fail(text,
+         "ok() is " + std::string(r.ok() ? "true" : "false") + " with " + std::to_string(r.error_count()) + " errors");
   }
   // The cap plus the one "stopped after N" note.
   if (r.diagnostics.size() > dyncc::robot::DiagnosticSink::kMaxDiagnostics + 1) {
@@ -96,7 +96,8 @@ void check_description(std::string_view text, const RobotDescription& robot) {
   }
   for (const auto& l : robot.joint_limits) check_coordinate(l.coordinate, "joint limit");
   for (const auto& p : robot.parameters) {
-    if (p.link < -1 || p.link >= n_links) fail(text, "parameter " + p.name + " refers to link " + std::to_string(p.link));
+    if (p.link < -1 || p.link >= n_links)
+      fail(text, "parameter " + p.name + " refers to link " + std::to_string(p.link));
     if (p.coordinate < -1 || p.coordinate >= n_coordinates) {
       fail(text, "parameter " + p.name + " refers to coordinate " + std::to_string(p.coordinate));
     }

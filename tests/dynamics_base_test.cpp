@@ -70,7 +70,7 @@ TEST_P(ShippedRobotBase, BaseRegressorReproducesFullRegressorAndHasFullColumnRan
   EXPECT_EQ(column_rank(WB), r) << "base regressor columns are dependent";
   EXPECT_EQ(column_rank(W), r) << "the full regressor has rank beyond the base parameters";
   RecordProperty("base_parameters", std::to_string(r));
-  RecordProperty("largest_relative_error", std::to_string(std::max(worst_matrix, worst_nominal)));
+  RecordProperty("largest_relative_error", scientific(std::max(worst_matrix, worst_nominal)));
 
   const std::string name = d->robot.name;
   if (name == "kraft_right") {

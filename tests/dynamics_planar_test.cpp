@@ -69,7 +69,7 @@ TEST(DynamicsPlanar, TwoLinkArmEqualsTextbookClosedForm) {
     ASSERT_LT(worst, 1e-12) << "state " << k << "\nH dyncc\n" << e.H << "\nH textbook\n" << H << "\nC dyncc\n" << e.C << "\nC textbook\n"
                             << C << "\ng dyncc " << e.g.transpose() << "\ng textbook " << G.transpose();
   }
-  RecordProperty("largest_relative_error", std::to_string(worst));
+  RecordProperty("largest_relative_error", scientific(worst));
 }
 
 }  // namespace

@@ -11,8 +11,6 @@
 
 #include "dynamics_support.hpp"
 #include "sym/diff.hpp"
-#include "sym/evaluate.hpp"
-#include "sym/substitute.hpp"
 #include "sym/trig_normal_form.hpp"
 
 namespace dyncc::test {
@@ -34,7 +32,7 @@ SkewResult skew_check(const dyn::Matrix& Hdot, const dyn::Matrix& C) {
       if (z.verdict == ZeroVerdict::Zero) {
         ++r.zero;
       } else if (z.verdict == ZeroVerdict::NonZero) {
-        if (r.nonzero++ == 0) r.first_nonzero = "N" + std::to_string(i + 1) + std::to_string(j + 1);
+        if (r.nonzero++ == 0) r.first_nonzero = std::string("N").append(std::to_string(i + 1)).append(std::to_string(j + 1));
       } else {
         ++r.unknown;
       }

@@ -7,10 +7,14 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <filesystem>
+#include <iomanip>
 #include <map>
 #include <memory>
 #include <random>
+#include <sstream>
+#include <stdexcept>
 #include <string>
+#include <typeinfo>
 #include <vector>
 
 #include "pipeline/derivation.hpp"
@@ -52,6 +56,8 @@ inline std::unique_ptr<pipeline::Derivation> derive_text(const std::string& text
     return pipeline::derive(std::move(*r.robot), options);
   } catch (const pipeline::DerivationError& e) {
     ADD_FAILURE() << label << " does not derive: " << e.message << "\n" << text;
+  } catch (const std::exception& e) {
+    ADD_FAILURE() << label << " does not derive, " << typeid(e).name() << ": " << e.what() << "\n" << text;
   }
   return nullptr;
 }
@@ -68,6 +74,8 @@ inline std::unique_ptr<pipeline::Derivation> derive_file(const std::filesystem::
     return pipeline::derive(std::move(*r.robot), options);
   } catch (const pipeline::DerivationError& e) {
     ADD_FAILURE() << path << " does not derive: " << e.message;
+  } catch (const std::exception& e) {
+    ADD_FAILURE() << path << " does not derive, " << typeid(e).name() << ": " << e.what();
   }
   return nullptr;
 }
@@ -90,6 +98,13 @@ inline dyn::State random_state(Eigen::Index n, std::mt19937_64& rng) {
 /// Largest entry of |a - b| relative to the largest entry of the references (at least `floor`).
 inline double relative_difference(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b, double scale, double floor = 1e-12) {
   return (a - b).cwiseAbs().maxCoeff() / std::max(scale, floor);
+}
+
+/// A figure for RecordProperty, in scientific notation (std::to_string would print 0.000000).
+inline std::string scientific(double x) {
+  std::ostringstream s;
+  s << std::scientific << std::setprecision(2) << x;
+  return s.str();
 }
 
 inline double max_abs(const Eigen::MatrixXd& m) { return m.size() == 0 ? 0.0 : m.cwiseAbs().maxCoeff(); }

@@ -13,7 +13,7 @@
 namespace dyncc::test {
 namespace {
 
-struct Run {
+struct CliRun {
   int exit_code = -1;
   std::string out;
 };
@@ -24,9 +24,9 @@ std::string quote(const std::string& s) {
   return q + "'";
 }
 
-Run run(const std::string& args) {
+CliRun run_dyncc(const std::string& args) {
   const std::string command = "timeout 300 " + quote(DYNCC_BINARY) + " " + args + " 2>&1";
-  Run r;
+  CliRun r;
   FILE* pipe = popen(command.c_str(), "r");
   if (pipe == nullptr) return r;
   char buffer[4096];
@@ -42,7 +42,7 @@ TEST_P(VerifyShippedRobot, PassesWithExitCodeZero) {
   ASSERT_EQ(access(DYNCC_BINARY, X_OK), 0) << "dyncc is not built at " << DYNCC_BINARY;
   // 200 random states per numeric check (the default is 1000) keeps the suite fast; the
   // symbolic proofs do not depend on the sample count.
-  const Run r = run("verify " + quote(GetParam().string()) + " --samples 200");
+  const CliRun r = run_dyncc("verify " + quote(GetParam().string()) + " --samples 200");
   EXPECT_EQ(r.exit_code, 0) << r.out;
   EXPECT_NE(r.out.find("all checks passed"), std::string::npos) << r.out;
 }

@@ -85,7 +85,8 @@ struct Sample {
 };
 
 namespace detail {
-inline ShadowPtr node(Shadow::Op op, ShadowPtr a = nullptr, ShadowPtr b = nullptr, int index = 0, const Rational& exact = Rational(0)) {
+inline ShadowPtr node(Shadow::Op op, ShadowPtr a = nullptr, ShadowPtr b = nullptr, int index = 0,
+                      const Rational& exact = Rational(0)) {
   auto s = std::make_shared<Shadow>();
   s->op = op;
   s->a = std::move(a);
@@ -98,17 +99,31 @@ inline ShadowPtr node(Shadow::Op op, ShadowPtr a = nullptr, ShadowPtr b = nullpt
 }  // namespace detail
 
 inline Sample num(const Rational& r) { return {number(r), detail::node(Shadow::Op::Num, nullptr, nullptr, 0, r)}; }
-inline Sample var(std::size_t i) { return {all_symbols().at(i), detail::node(Shadow::Op::Var, nullptr, nullptr, static_cast<int>(i))}; }
-inline Sample operator+(const Sample& a, const Sample& b) { return {a.expr + b.expr, detail::node(Shadow::Op::Add, a.shadow, b.shadow)}; }
-inline Sample operator-(const Sample& a, const Sample& b) { return {a.expr - b.expr, detail::node(Shadow::Op::Sub, a.shadow, b.shadow)}; }
-inline Sample operator*(const Sample& a, const Sample& b) { return {a.expr * b.expr, detail::node(Shadow::Op::Mul, a.shadow, b.shadow)}; }
-inline Sample operator/(const Sample& a, const Sample& b) { return {a.expr / b.expr, detail::node(Shadow::Op::Div, a.shadow, b.shadow)}; }
+inline Sample var(std::size_t i) {
+  return {all_symbols().at(i), detail::node(Shadow::Op::Var, nullptr, nullptr, static_cast<int>(i))};
+}
+inline Sample operator+(const Sample& a, const Sample& b) {
+  return {a.expr + b.expr, detail::node(Shadow::Op::Add, a.shadow, b.shadow)};
+}
+inline Sample operator-(const Sample& a, const Sample& b) {
+  return {a.expr - b.expr, detail::node(Shadow::Op::Sub, a.shadow, b.shadow)};
+}
+inline Sample operator*(const Sample& a, const Sample& b) {
+  return {a.expr * b.expr, detail::node(Shadow::Op::Mul, a.shadow, b.shadow)};
+}
+inline Sample operator/(const Sample& a, const Sample& b) {
+  return {a.expr / b.expr, detail::node(Shadow::Op::Div, a.shadow, b.shadow)};
+}
 inline Sample operator-(const Sample& a) { return {-a.expr, detail::node(Shadow::Op::Neg, a.shadow)}; }
-inline Sample pow(const Sample& a, int k) { return {sym::pow(a.expr, k), detail::node(Shadow::Op::Pow, a.shadow, nullptr, k)}; }
+inline Sample pow(const Sample& a, int k) {
+  return {sym::pow(a.expr, k), detail::node(Shadow::Op::Pow, a.shadow, nullptr, k)};
+}
 inline Sample sin(const Sample& a) { return {sym::sin(a.expr), detail::node(Shadow::Op::Sin, a.shadow)}; }
 inline Sample cos(const Sample& a) { return {sym::cos(a.expr), detail::node(Shadow::Op::Cos, a.shadow)}; }
 inline Sample sqrt(const Sample& a) { return {sym::sqrt(a.expr), detail::node(Shadow::Op::Sqrt, a.shadow)}; }
-inline Sample atan2(const Sample& y, const Sample& x) { return {sym::atan2(y.expr, x.expr), detail::node(Shadow::Op::Atan2, y.shadow, x.shadow)}; }
+inline Sample atan2(const Sample& y, const Sample& x) {
+  return {sym::atan2(y.expr, x.expr), detail::node(Shadow::Op::Atan2, y.shadow, x.shadow)};
+}
 
 // ---- the generator ----
 
@@ -118,6 +133,7 @@ struct GeneratorOptions {
   bool sqrt = true;                       // sqrt of positive expressions
   bool atan2 = true;                      // atan2 with a positive argument
   int max_exponent = 3;                   // integer powers 2..max_exponent
+  bool integer_angles = false;            // trig arguments: integer combinations, no constant
 };
 
 class Generator {
@@ -135,7 +151,9 @@ class Generator {
     return p;
   }
 
-  std::size_t symbol_index() { return static_cast<std::size_t>(uniform(0, static_cast<int>(options_.num_symbols) - 1)); }
+  std::size_t symbol_index() {
+    return static_cast<std::size_t>(uniform(0, static_cast<int>(options_.num_symbols) - 1));
+  }
 
   /// A small non-zero rational p/q.
   Sample rational() {
@@ -170,7 +188,8 @@ class Generator {
     }
   }
 
-  /// An expression >= 1/2 everywhere (so it can divide and go under sqrt).
+  /// An expression bounded away from 0 everywhere (each case is >= 1/2, a product of k of them
+  /// >= 2^-k), so it can divide and go under sqrt.
   Sample positive(int depth) {
     const int d = depth > 0 ? depth - 1 : 0;
     switch (uniform(0, 6)) {
@@ -178,19 +197,26 @@ class Generator {
       case 1: return num(Rational(1)) + pow(expression(d), 2);
       case 2: return num(Rational(2)) + sin(expression(d));
       case 3: return num(Rational(2)) - cos(expression(d));
-      case 4: return options_.sqrt ? sqrt(num(Rational(1)) + pow(expression(d), 2)) : num(Rational(3, 2)) + cos(expression(d));
+      case 4:
+        return options_.sqrt ? sqrt(num(Rational(1)) + pow(expression(d), 2))
+                             : num(Rational(3, 2)) + cos(expression(d));
       case 5: return num(Rational(1, 2)) + pow(expression(d), 2) + pow(expression(d), 4);
       default: return depth > 0 ? positive(d) * positive(d) : num(Rational(5, 4));
     }
   }
 
-  /// A rational linear combination of symbols (and maybe a rational constant): a trig argument
-  /// of the decidable class.
+  /// A rational linear combination of one or two symbols (and maybe a rational constant): a
+  /// trig argument of the decidable class. (The normal form grows exponentially with the number
+  /// of angles in a product, so arguments stay short to keep the tests fast.)
   Sample linear_angle() {
+    if (options_.integer_angles) {
+      Sample a = num(Rational(uniform(1, 3))) * var(symbol_index());
+      if (chance(0.5)) a = a + num(Rational(chance(0.5) ? -1 : 2)) * var(symbol_index());
+      return a;
+    }
     Sample a = rational_small() * var(symbol_index());
-    const int extra = uniform(0, 2);
-    for (int i = 0; i < extra; ++i) a = chance(0.5) ? a + rational_small() * var(symbol_index()) : a - var(symbol_index());
-    if (chance(0.25)) a = a + num(Rational(uniform(1, 3), uniform(1, 2)));
+    if (chance(0.5)) a = chance(0.5) ? a + rational_small() * var(symbol_index()) : a - var(symbol_index());
+    if (chance(0.2)) a = a + num(Rational(uniform(1, 3), uniform(1, 2)));
     return a;
   }
 
@@ -219,7 +245,8 @@ class Generator {
 
  private:
   Sample rational_small() {
-    static constexpr std::array<std::pair<int, int>, 8> kChoices = {{{1, 1}, {1, 1}, {2, 1}, {-1, 1}, {1, 2}, {3, 2}, {-2, 1}, {1, 3}}};
+    static constexpr std::array<std::pair<int, int>, 8> kChoices = {
+        {{1, 1}, {1, 1}, {2, 1}, {-1, 1}, {1, 2}, {3, 2}, {-2, 1}, {1, 3}}};
     const auto [p, q] = kChoices.at(static_cast<std::size_t>(uniform(0, 7)));
     return num(Rational(p, q));
   }
@@ -293,11 +320,13 @@ class Rewriter {
       std::vector<std::int64_t> c{1};
       for (int n = 1; n <= k; ++n) {
         std::vector<std::int64_t> next(static_cast<std::size_t>(n) + 1, 1);
-        for (int j = 1; j < n; ++j) next[static_cast<std::size_t>(j)] = c[static_cast<std::size_t>(j) - 1] + c[static_cast<std::size_t>(j)];
+        for (int j = 1; j < n; ++j)
+          next[static_cast<std::size_t>(j)] = c[static_cast<std::size_t>(j) - 1] + c[static_cast<std::size_t>(j)];
         c = std::move(next);
       }
       Expr sum(0);
-      for (int j = 0; j <= k; ++j) sum = sum + Expr(c[static_cast<std::size_t>(j)]) * sym::pow(u, j) * sym::pow(v, k - j);
+      for (int j = 0; j <= k; ++j)
+        sum = sum + Expr(c[static_cast<std::size_t>(j)]) * sym::pow(u, j) * sym::pow(v, k - j);
       return sum;
     }
     Expr product(1);
@@ -319,7 +348,8 @@ class Rewriter {
     // Double angle at half the argument.
     const Expr half = plain(arg) / Expr(2);
     if (is_sin) return Expr(2) * sym::sin(half) * sym::cos(half);
-    return coin() ? Expr(1) - Expr(2) * sym::pow(sym::sin(half), 2) : sym::pow(sym::cos(half), 2) - sym::pow(sym::sin(half), 2);
+    return coin() ? Expr(1) - Expr(2) * sym::pow(sym::sin(half), 2)
+                  : sym::pow(sym::cos(half), 2) - sym::pow(sym::sin(half), 2);
   }
 
   std::mt19937_64 rng_;

@@ -58,11 +58,13 @@ struct Expectation {
 
 Expectation read_expectation(const fs::path& file) {
   std::ifstream in(file);
-  std::string first, second;
+  std::string first;
+  std::string second;
   std::getline(in, first);
   std::getline(in, second);
   Expectation expectation;
-  const std::string expect_prefix = "# expect: ", at_prefix = "# at: ";
+  const std::string expect_prefix = "# expect: ";
+  const std::string at_prefix = "# at: ";
   if (first.rfind(expect_prefix, 0) == 0) expectation.message = first.substr(expect_prefix.size());
   if (second.rfind(at_prefix, 0) == 0 && second != "# at: none") expectation.at = second.substr(at_prefix.size());
   return expectation;

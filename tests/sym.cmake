@@ -4,6 +4,7 @@ dyncc_add_test(sym_tests
   sym_canonical_test.cpp
   sym_diff_test.cpp
   sym_expand_substitute_test.cpp
+  sym_gradient_modular_test.cpp
   sym_parse_print_test.cpp
   sym_rational_test.cpp
   sym_zero_test.cpp

@@ -143,7 +143,8 @@ TEST(SymDiff, SumAndProductRules) {
     const Sample a = gen.trig_polynomial(2);
     const Sample b = gen.trig_polynomial(2);
     const Rational c(gen.uniform(-5, 5), gen.uniform(1, 4));
-    EXPECT_EQ(diff(a.expr + number(c) * b.expr, x), diff(a.expr, x) + number(c) * diff(b.expr, x)) << describe(a) << " | " << describe(b);
+    EXPECT_EQ(diff(a.expr + number(c) * b.expr, x), diff(a.expr, x) + number(c) * diff(b.expr, x))
+        << describe(a) << " | " << describe(b);
     const Expr product_rule = diff(a.expr * b.expr, x) - (diff(a.expr, x) * b.expr + a.expr * diff(b.expr, x));
     EXPECT_EQ(test_zero(product_rule).verdict, ZeroVerdict::Zero) << describe(a) << " | " << describe(b);
   }
@@ -171,7 +172,8 @@ TEST(SymDiff, HandDerivedDerivatives) {
       {Expr(7), Expr(0)},
       {y, Expr(0)},
   };
-  for (const Case& c : cases) EXPECT_EQ(diff(c.e, x), c.expected) << to_string(c.e) << " -> " << to_string(diff(c.e, x));
+  for (const Case& c : cases)
+    EXPECT_EQ(diff(c.e, x), c.expected) << to_string(c.e) << " -> " << to_string(diff(c.e, x));
 }
 
 TEST(SymDiff, OnlySymbolsAreVariables) {

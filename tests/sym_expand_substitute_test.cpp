@@ -59,8 +59,8 @@ TEST(SymExpand, PreservesValueOnRandomExpressions) {
       const Point p = gen.point();
       const double expected = s(p);
       const double got = test::engine_eval(x, p);
-      EXPECT_TRUE(test::close(got, expected, 1e-8)) << to_string(s.expr) << "\n  expanded " << to_string(x) << "\n  " << got
-                                                    << " vs " << expected;
+      EXPECT_TRUE(test::close(got, expected, 1e-8))
+          << to_string(s.expr) << "\n  expanded " << to_string(x) << "\n  " << got << " vs " << expected;
     }
   }
 }
@@ -140,7 +140,8 @@ TEST(SymSubstitute, MatchesEvaluationAtSubstitutedValues) {
       const double expected = e(moved);
       const double got = test::engine_eval(s, p);
       EXPECT_TRUE(test::close(got, expected, 1e-8))
-          << to_string(e.expr) << " with x -> " << to_string(a.expr) << ", q1 -> " << to_string(b.expr) << ": " << got << " vs " << expected;
+          << to_string(e.expr) << " with x -> " << to_string(a.expr) << ", q1 -> " << to_string(b.expr) << ": " << got
+          << " vs " << expected;
     }
   }
 }

@@ -31,12 +31,32 @@ std::vector<std::pair<Rational, Expr>> terms_of(Expr e) {
   return out;
 }
 
+// True when t is a single term with no sum left to distribute.
+bool is_distributed(Expr t) {
+  if (t.kind() == Kind::Add) return false;
+  if (t.kind() == Kind::Mul) {
+    for (std::size_t i = 0; i < t.args().size(); ++i) {
+      if (t.args()[i].kind() == Kind::Add && !t.weights()[i].is_negative()) return false;
+    }
+  }
+  return true;
+}
+
 std::vector<std::pair<Rational, Expr>> multiply(const std::vector<std::pair<Rational, Expr>>& a,
                                                 const std::vector<std::pair<Rational, Expr>>& b) {
   SumMap acc;
   acc.reserve(a.size() * b.size());
   for (const auto& [ca, ta] : a) {
-    for (const auto& [cb, tb] : b) add_into(acc, ta * tb, ca * cb);
+    for (const auto& [cb, tb] : b) {
+      const Expr product = ta * tb;
+      if (is_distributed(product)) {
+        add_into(acc, product, ca * cb);
+      } else {
+        // The product of two expanded terms can be a sum again: sqrt(u)*sqrt(u) == u. Expand it
+        // too, or the result is not fully expanded (and expand is not idempotent).
+        for (const auto& [c, t] : terms_of(expand(product))) add_into(acc, t, ca * cb * c);
+      }
+    }
   }
   std::vector<std::pair<Rational, Expr>> out;
   out.reserve(acc.size());

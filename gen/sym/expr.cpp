@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <deque>
+#include <limits>
 #include <stdexcept>
 #include <unordered_map>
 #include <unordered_set>
@@ -10,6 +11,17 @@
 
 namespace dyncc::sym {
 namespace {
+
+Int128 gcd128(Int128 a, Int128 b) {
+  if (a < 0) a = -a;
+  if (b < 0) b = -b;
+  while (b != 0) {
+    const Int128 t = a % b;
+    a = b;
+    b = t;
+  }
+  return a;
+}
 
 std::size_t mix(std::size_t h, std::size_t v) {
   // 64-bit hash combine (boost-style with a better multiplier); deterministic by construction.
@@ -141,18 +153,70 @@ Expr build_add(Rational constant, WeightedList& terms) {
   return intern(std::move(n));
 }
 
+// Exponents are stored as Rationals but used as int (pow, diff, expand, the normal form):
+// merged exponents such as ((x^64)^64)^64... must stay in int range instead of being truncated.
+int checked_exponent(const Rational& exponent) {
+  if (exponent.num() > std::numeric_limits<int>::max() || exponent.num() < -std::numeric_limits<int>::max()) {
+    throw RationalOverflow("exponent out of range");
+  }
+  return static_cast<int>(exponent.num());
+}
+
+// A sum used as a factor is stored primitive: its coefficients (and constant) have no common
+// rational factor and its first term is positive; the content c (sum == c * primitive) moves
+// into the product's coefficient. Without this, (2*x + 2*y)*z and 2*((x + y)*z) were distinct
+// nodes (multiplication was not associative on nodes), as were (y - x)*z and -((x - y)*z), and
+// "q/(3*(s + 2))" did not parse back to the node it was printed from.
+std::pair<Rational, Expr> primitive_part(Expr sum) {
+  constexpr Int128 kMax = std::numeric_limits<std::int64_t>::max();
+  Int128 g = 0;  // gcd of the numerators
+  Int128 l = 1;  // lcm of the denominators; 0 once it does not fit (then they stay as they are)
+  auto visit = [&](const Rational& w) {
+    if (w.is_zero()) return;
+    g = gcd128(g, w.num());
+    if (l != 0) {
+      l = l / gcd128(l, w.den()) * w.den();
+      if (l > kMax) l = 0;
+    }
+  };
+  visit(sum.value());
+  for (const Rational& w : sum.weights()) visit(w);
+  if (g > kMax) g = 1;  // every numerator is INT64_MIN
+  if (l == 0) l = 1;
+  Rational content(static_cast<std::int64_t>(g), static_cast<std::int64_t>(l));
+  if (sum.weights()[0].is_negative()) content = -content;
+  if (content.is_one()) return {content, sum};
+  Node n;
+  n.kind = Kind::Add;
+  try {
+    n.value = sum.value() / content;
+    n.weights.reserve(sum.weights().size());
+    for (const Rational& w : sum.weights()) n.weights.push_back(w / content);
+  } catch (const RationalOverflow&) {
+    return {Rational(1), sum};  // extreme coefficients: leave the sum as it is
+  }
+  n.args.assign(sum.args().begin(), sum.args().end());  // same terms, so the same canonical order
+  return {content, intern(std::move(n))};
+}
+
 void accumulate_factor(Expr e, const Rational& exponent, Rational& coef, WeightedList& factors) {
   switch (e.kind()) {
     case Kind::Number: {
       if (!exponent.is_integer()) throw std::domain_error("non-integer power of a number");
       if (e.value().is_zero() && exponent.is_negative()) throw std::domain_error("division by zero");
-      coef *= e.value().pow(static_cast<int>(exponent.num()));
+      coef *= e.value().pow(checked_exponent(exponent));
       return;
     }
     case Kind::Mul:
-      coef *= e.value().pow(static_cast<int>(exponent.num()));
+      coef *= e.value().pow(checked_exponent(exponent));
       for (std::size_t i = 0; i < e.args().size(); ++i) factors.emplace_back(e.args()[i], e.weights()[i] * exponent);
       return;
+    case Kind::Add: {
+      const auto [content, primitive] = primitive_part(e);
+      coef *= content.pow(checked_exponent(exponent));
+      factors.emplace_back(primitive, exponent);
+      return;
+    }
     default: factors.emplace_back(e, exponent); return;
   }
 }
@@ -176,6 +240,7 @@ Expr build_mul(Rational coef, WeightedList& factors) {
     }
     if (!changed) break;
   }
+  for (const auto& [base, exp] : factors) checked_exponent(exp);
   if (coef.is_zero()) return Expr(0);
   if (factors.empty()) return number(coef);
   if (factors.size() == 1 && factors[0].second.is_one()) {
@@ -207,15 +272,14 @@ std::pair<Expr, Rational> split_pi_multiple(Expr arg) {
   return {arg, Rational(0)};
 }
 
-// Reduces k to [0, 2).
-Rational reduce_mod_two(Rational k) {
-  const std::int64_t twice_floor = [&] {
-    // floor(k / 2) * 2
-    std::int64_t q = k.num() / (2 * k.den());
-    if (k.num() < 0 && q * 2 * k.den() != k.num()) --q;
-    return q * 2;
-  }();
-  return k - Rational(twice_floor);
+// k modulo 2, in (-1, 1]; exact in 128 bits (2*den may not fit in int64), and the result
+// always fits because |numerator| <= den.
+Rational reduce_mod_two(const Rational& k) {
+  const Int128 d = k.den();
+  Int128 r = static_cast<Int128>(k.num()) % (2 * d);
+  if (r < 0) r += 2 * d;  // [0, 2d)
+  if (r > d) r -= 2 * d;  // (-d, d]
+  return Rational(static_cast<std::int64_t>(r), k.den());
 }
 
 enum class TrigKind : std::uint8_t { Sin, Cos };
@@ -227,53 +291,55 @@ Expr make_function(Kind kind, std::vector<Expr> args) {
   return intern(std::move(n));
 }
 
+// sin/cos(rest + k*pi) in canonical form. The sign of the argument is normalised first
+// (odd/even symmetry) and only then is k reduced, so f(-a) and f(a) always meet the same
+// reduction. (Reducing k into [0, 2) first and flipping the sign afterwards turned sin(-(x + pi/3))
+// into -sin(x - 5*pi/3), a different node from -sin(x + pi/3), and cos(pi/3 - x) did not survive
+// a print/parse round trip.) Exact multiples of pi/2 are pulled out; other rational multiples
+// stay in the argument, reduced into (-1, 1]. They are deliberately not rewritten by quarter
+// turns (sin(x + 2*pi/3) -> cos(x + pi/6)): the zero test treats pi/L as a free basis angle, and
+// such value-specific rewrites would make identities like the angle-sum formula at pi/3
+// unprovable.
 Expr trig(TrigKind which, Expr arg) {
   auto [rest, k] = split_pi_multiple(arg);
+  bool negate = false;
+  if (has_negative_sign(rest)) {  // sin(-a) = -sin(a), cos(-a) = cos(a)
+    rest = -rest;
+    k = -k;
+    negate = which == TrigKind::Sin;
+  }
   k = reduce_mod_two(k);
-  int quarter_turns = -1;  // k = quarter_turns/2 when k is a multiple of 1/2
-  if ((k * Rational(2)).is_integer()) quarter_turns = static_cast<int>((k * Rational(2)).num());
-  Expr base_arg = rest;
-  // Not a multiple of pi/2: keep the (reduced) pi part inside the argument.
-  if (quarter_turns < 0) base_arg = k.is_zero() ? rest : rest + number(k) * pi();
-  // odd/even symmetry
-  bool negate_result = false;
-  if (has_negative_sign(base_arg)) {
-    base_arg = -base_arg;
-    if (quarter_turns < 0) {
-      if (which == TrigKind::Sin) negate_result = true;
-    } else {
-      // sin(-r + m pi/2), cos(-r + m pi/2): rewrite with r then apply the shift below
-      if (which == TrigKind::Sin) negate_result = true;
-      // sin(-r + m*pi/2) = -sin(r - m*pi/2); cos(-r + m*pi/2) = cos(r - m*pi/2)
-      quarter_turns = (4 - quarter_turns) % 4;
-    }
+  if (rest.is_zero() && k.is_negative()) {  // a pure multiple of pi: the sign of k decides
+    k = -k;
+    if (which == TrigKind::Sin) negate = !negate;
   }
-  if (quarter_turns < 0) {
-    const Expr e = make_function(which == TrigKind::Sin ? Kind::Sin : Kind::Cos, {base_arg});
-    return negate_result ? -e : e;
+  const Int128 twice_num = static_cast<Int128>(k.num()) * 2;
+  if (twice_num % k.den() != 0) {  // not a multiple of pi/2
+    const Expr e = make_function(which == TrigKind::Sin ? Kind::Sin : Kind::Cos, {rest + number(k) * pi()});
+    return negate ? -e : e;
   }
-  // f(r + m*pi/2) for m in 0..3
-  const bool zero_arg = base_arg.is_zero();
-  const Expr s = zero_arg ? Expr(0) : make_function(Kind::Sin, {base_arg});
-  const Expr c = zero_arg ? Expr(1) : make_function(Kind::Cos, {base_arg});
+  // f(r + q*pi/2) = +-g(r), g = f for even q and the other function for odd q (k in (-1, 1]).
+  const int q = static_cast<int>(((twice_num / k.den()) % 4 + 4) % 4);
+  const bool use_sin = (which == TrigKind::Sin) == (q % 2 == 0);
+  if (which == TrigKind::Sin ? q >= 2 : (q == 1 || q == 2)) negate = !negate;
   Expr result;
-  if (which == TrigKind::Sin) {
-    const Expr table[4] = {s, c, -s, -c};
-    result = table[quarter_turns];
+  if (rest.is_zero()) {
+    result = use_sin ? Expr(0) : Expr(1);
   } else {
-    const Expr table[4] = {c, -s, -c, s};
-    result = table[quarter_turns];
+    result = make_function(use_sin ? Kind::Sin : Kind::Cos, {rest});
   }
-  return negate_result ? -result : result;
+  return negate ? -result : result;
 }
 
 bool rational_sqrt(const Rational& v, Rational& out) {
   auto isqrt = [](std::int64_t n, std::int64_t& r) {
     if (n < 0) return false;
-    auto x = static_cast<std::int64_t>(__builtin_sqrt(static_cast<double>(n)));
+    // Squares in 128 bits: near INT64_MAX, (x + 1)^2 overflowed int64, which looped forever
+    // (sqrt(9223372036854775807) hung) and could report a non-square as a perfect square.
+    auto x = static_cast<Int128>(__builtin_sqrt(static_cast<double>(n)));
     while (x > 0 && x * x > n) --x;
     while ((x + 1) * (x + 1) <= n) ++x;
-    r = x;
+    r = static_cast<std::int64_t>(x);
     return x * x == n;
   };
   std::int64_t n = 0;

@@ -129,11 +129,12 @@ class Parser {
     const Expr exponent = unary();
     if (!exponent.is_number()) fail(exponent_at, "exponent must be a number, found an expression with symbols");
     const Rational n = exponent.value();
-    const Rational twice = n * Rational(2);
-    if (!twice.is_integer()) fail(exponent_at, "exponent must be an integer or a half-integer, found " + n.to_string());
-    if (twice.num() > 2 * kMaxExponent || twice.num() < -2 * kMaxExponent) {
+    // Range first: doubling a huge exponent (x^4^31) would overflow and throw out of parse().
+    if (n > Rational(kMaxExponent) || n < Rational(-kMaxExponent)) {
       fail(exponent_at, "exponent " + n.to_string() + " is too large (at most " + std::to_string(kMaxExponent) + ")");
     }
+    const Rational twice = n * Rational(2);
+    if (!twice.is_integer()) fail(exponent_at, "exponent must be an integer or a half-integer, found " + n.to_string());
     return guarded(at, [&] {
       if (n.is_integer()) return pow(base, static_cast<int>(n.num()));
       return pow(sqrt(base), static_cast<int>(twice.num()));

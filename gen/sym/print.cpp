@@ -33,7 +33,7 @@ class Printer {
 
  private:
   std::string wrap(Expr e, int min_prec) {
-    const std::string s = print(e);
+    std::string s = print(e);  // not const: returned by move
     if (precedence(e) < min_prec) return style_.latex ? "\\left(" + s + "\\right)" : "(" + s + ")";
     return s;
   }
@@ -89,7 +89,27 @@ class Printer {
     std::string b = wrap(base, kAtom);
     if (exponent == 1) return b;
     if (style_.latex) return "{" + b + "}^{" + std::to_string(exponent) + "}";
-    return b + "^" + std::to_string(exponent);
+    return plain_power(b, exponent);
+  }
+
+  // b^n for the parser, which accepts exponents up to 64: larger ones (reachable by merging,
+  // (x^2)^33 == x^66) are written as nested powers, b^(64q + r) = (b^q)^64*b^r, so the text
+  // still reads back to the same node.
+  // (Built with append: GCC 12 warns falsely (-Wrestrict) on "literal" + std::string at -O3.)
+  static std::string plain_power(const std::string& b, std::int64_t n) {
+    constexpr std::int64_t kMaxParsedExponent = 64;
+    std::string out;
+    if (n <= kMaxParsedExponent) {
+      out.append(b);
+      if (n != 1) out.append("^").append(std::to_string(n));
+      return out;
+    }
+    out.append("(")
+        .append(plain_power(b, n / kMaxParsedExponent))
+        .append(")^")
+        .append(std::to_string(kMaxParsedExponent));
+    if (n % kMaxParsedExponent != 0) out.append("*").append(plain_power(b, n % kMaxParsedExponent));
+    return out;
   }
 
   // coef * term where term is coefficient-free (Mul with coef 1 or an atom); coef >= 0.

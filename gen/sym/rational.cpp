@@ -51,7 +51,16 @@ Rational operator+(const Rational& a, const Rational& b) {
                              static_cast<Int128>(a.den_) * b.den_);
 }
 
-Rational operator-(const Rational& a, const Rational& b) { return a + (-b); }
+// Computed directly rather than as a + (-b): -b overflows for b = INT64_MIN even when a - b
+// fits (e.g. -1 - INT64_MIN == INT64_MAX).
+Rational operator-(const Rational& a, const Rational& b) {
+  if (a.den_ == 1 && b.den_ == 1) {
+    std::int64_t s = 0;
+    if (!__builtin_sub_overflow(a.num_, b.num_, &s)) return Rational(s);
+  }
+  return Rational::from_wide(static_cast<Int128>(a.num_) * b.den_ - static_cast<Int128>(b.num_) * a.den_,
+                             static_cast<Int128>(a.den_) * b.den_);
+}
 
 Rational operator*(const Rational& a, const Rational& b) {
   if (a.den_ == 1 && b.den_ == 1) {
@@ -73,16 +82,16 @@ Rational Rational::operator-() const {
 }
 
 Rational Rational::pow(int exponent) const {
-  if (exponent < 0) return Rational(1) / pow(-exponent);
+  // The magnitude is taken as unsigned: -exponent would overflow for INT_MIN.
+  unsigned e = exponent < 0 ? 0U - static_cast<unsigned>(exponent) : static_cast<unsigned>(exponent);
   Rational result(1);
   Rational base = *this;
-  unsigned e = static_cast<unsigned>(exponent);
   while (e != 0) {
     if ((e & 1U) != 0) result = result * base;
     e >>= 1U;
     if (e != 0) base = base * base;
   }
-  return result;
+  return exponent < 0 ? Rational(1) / result : result;
 }
 
 std::strong_ordering operator<=>(const Rational& a, const Rational& b) {

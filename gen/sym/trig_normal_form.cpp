@@ -2,12 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <numbers>
 #include <numeric>
 #include <random>
 #include <stdexcept>
 #include <unordered_map>
 
-#include "sym/evaluate.hpp"
 
 namespace dyncc::sym {
 namespace {
@@ -186,7 +187,12 @@ class NormalFormBuilder {
   static Expr make_sin(Expr y) { return sin(y); }
   static Expr make_cos(Expr y) { return cos(y); }
 
-  // Replaces sin(y)^k (k >= 2) by sin(y)^(k mod 2) * (1 - cos(y)^2)^(k div 2).
+  [[nodiscard]] bool reducible(std::uint32_t var) const {
+    return is_sin_of_angle_[var] >= 0 || square_of_.contains(var);
+  }
+
+  // Replaces sin(y)^k (k >= 2) by sin(y)^(k mod 2) * (1 - cos(y)^2)^(k div 2), and
+  // sqrt(u)^k by sqrt(u)^(k mod 2) * u^(k div 2).
   Poly reduce(Poly p) {
     for (;;) {
       bool changed = false;
@@ -195,7 +201,7 @@ class NormalFormBuilder {
       for (const auto& [m, c] : p) {
         std::size_t hit = m.size();
         for (std::size_t k = 0; k < m.size(); ++k) {
-          if (exp_of(m[k]) >= 2 && is_sin_of_angle_[var_of(m[k])] >= 0) {
+          if (exp_of(m[k]) >= 2 && reducible(var_of(m[k]))) {
             hit = k;
             break;
           }
@@ -205,16 +211,21 @@ class NormalFormBuilder {
           continue;
         }
         changed = true;
-        const Angle& a = angles_[static_cast<std::size_t>(is_sin_of_angle_[var_of(m[hit])])];
+        const std::uint32_t var = var_of(m[hit]);
         Monomial rest = m;
         const std::uint32_t e = exp_of(m[hit]) - 2;
         if (e == 0) {
           rest.erase(rest.begin() + static_cast<std::ptrdiff_t>(hit));
         } else {
-          rest[hit] = pack(var_of(m[hit]), e);
+          rest[hit] = pack(var, e);
         }
-        add_term(out, rest, c);  // s^2 * rest = rest - c^2 * rest
-        add_term(out, multiply_monomials(rest, Monomial{pack(a.cos_var, 2)}), -c);
+        if (is_sin_of_angle_[var] >= 0) {
+          const Angle& a = angles_[static_cast<std::size_t>(is_sin_of_angle_[var])];
+          add_term(out, rest, c);  // s^2 * rest = rest - c^2 * rest
+          add_term(out, multiply_monomials(rest, Monomial{pack(a.cos_var, 2)}), -c);
+        } else {
+          for (const auto& [mu, cu] : square_of_.at(var)) add_term(out, multiply_monomials(rest, mu), c * cu);
+        }
       }
       p = std::move(out);
       if (!changed) return p;
@@ -319,7 +330,19 @@ class NormalFormBuilder {
       }
       case Kind::Sin: result = trig_of(e.args()[0]).second; break;
       case Kind::Cos: result = trig_of(e.args()[0]).first; break;
-      case Kind::Sqrt:
+      case Kind::Sqrt: {
+        // An opaque atom r with the relation r^2 = u, so that e.g. (sqrt(u) + 1)^2 - u - 2*sqrt(u) - 1
+        // reduces to 0. (The relations r^2 - u have pairwise coprime leading terms with each
+        // other and with s^2 + c^2 - 1, so they stay a Groebner basis.)
+        mark_inexact("the expression contains sqrt or atan2");
+        const std::uint32_t v = plain_var(e);
+        if (!square_of_.contains(v)) {
+          Poly u = to_poly(e.args()[0]);
+          square_of_.emplace(v, std::move(u));
+        }
+        result = variable_poly(v);
+        break;
+      }
       case Kind::Atan2:
         mark_inexact("the expression contains sqrt or atan2");
         result = variable_poly(plain_var(e));
@@ -341,30 +364,131 @@ class NormalFormBuilder {
   std::unordered_map<Expr, std::size_t> angle_index_;
   std::unordered_map<std::pair<std::size_t, std::int64_t>, std::pair<Poly, Poly>, PairHash> multiples_;
   std::unordered_map<const Node*, Poly> memo_;
+  std::unordered_map<std::uint32_t, Poly> square_of_;  // sqrt(u)'s variable -> u
   bool exact_ = true;
   std::string note_;
 };
 
-// Samples e at pseudo-random points and returns the one with the largest |value|.
-void find_witness(Expr e, ZeroTestResult& result) {
+// A value and a bound on its rounding error (first-order running error analysis). Sampling
+// uses it to tell a real non-zero value from rounding noise: an expression that is identically
+// zero but outside the decidable class, like (sqrt((x+10)^2) - sqrt(x^2+20x+100))*(x+10)^8,
+// evaluates to ~1e-6 at random points, and an absolute threshold reported that noise as a
+// witness that the expression is "not identically zero".
+struct Bounded {
+  double value = 0.0;
+  double error = 0.0;
+};
+
+class BoundedEvaluator {
+ public:
+  BoundedEvaluator(const std::vector<Expr>& symbols, const std::vector<double>& point) {
+    for (std::size_t i = 0; i < symbols.size(); ++i) memo_.emplace(symbols[i].node(), Bounded{point[i], 0.0});
+  }
+
+  Bounded operator()(Expr e) {
+    if (const auto it = memo_.find(e.node()); it != memo_.end()) return it->second;
+    constexpr double eps = std::numeric_limits<double>::epsilon();
+    constexpr double inf = std::numeric_limits<double>::infinity();
+    const auto args = e.args();
+    Bounded r;
+    switch (e.kind()) {
+      case Kind::Number:
+        r.value = e.value().to_double();
+        r.error = eps * std::abs(r.value);
+        break;
+      case Kind::Constant:
+        r.value = std::numbers::pi;
+        r.error = eps * r.value;
+        break;
+      case Kind::Symbol: r = {std::numeric_limits<double>::quiet_NaN(), inf}; break;  // every symbol is an input
+      case Kind::Add: {
+        r.value = e.value().to_double();
+        double magnitude = std::abs(r.value);
+        for (std::size_t i = 0; i < args.size(); ++i) {
+          const Bounded a = (*this)(args[i]);
+          const double w = e.weights()[i].to_double();
+          r.value += w * a.value;
+          r.error += std::abs(w) * a.error;
+          magnitude += std::abs(w * a.value);
+        }
+        // Each weight, product and partial sum rounds once.
+        r.error += 3.0 * static_cast<double>(args.size() + 1) * eps * magnitude;
+        break;
+      }
+      case Kind::Mul: {
+        r.value = e.value().to_double();
+        double relative = eps;
+        bool exact_zero = false;
+        for (std::size_t i = 0; i < args.size(); ++i) {
+          const Bounded a = (*this)(args[i]);
+          const double n = e.weights()[i].to_double();
+          r.value *= std::pow(a.value, n);
+          if (a.value == 0.0) {
+            exact_zero = exact_zero || (a.error == 0.0 && n > 0);
+            relative = inf;
+          } else {
+            relative += std::abs(n) * (a.error / std::abs(a.value)) + (std::abs(n) + 1.0) * eps;
+          }
+        }
+        r.error = exact_zero ? 0.0 : std::abs(r.value) * relative;
+        if (std::isnan(r.error)) r.error = inf;
+        break;
+      }
+      case Kind::Sin:
+      case Kind::Cos: {
+        const Bounded a = (*this)(args[0]);
+        r.value = e.kind() == Kind::Sin ? std::sin(a.value) : std::cos(a.value);
+        r.error = a.error + eps;  // |derivative| <= 1
+        break;
+      }
+      case Kind::Sqrt: {
+        const Bounded a = (*this)(args[0]);
+        r.value = std::sqrt(a.value);
+        r.error = a.error == 0.0 ? eps * r.value : (r.value > 0.0 ? a.error / (2.0 * r.value) + eps * r.value : inf);
+        break;
+      }
+      case Kind::Atan2: {
+        const Bounded y = (*this)(args[0]);
+        const Bounded x = (*this)(args[1]);
+        r.value = std::atan2(y.value, x.value);
+        const double d = x.value * x.value + y.value * y.value;
+        r.error =
+            d > 0.0 ? (std::abs(x.value) * y.error + std::abs(y.value) * x.error) / d + eps * std::abs(r.value) : inf;
+        break;
+      }
+    }
+    memo_.emplace(e.node(), r);
+    return r;
+  }
+
+ private:
+  std::unordered_map<const Node*, Bounded> memo_;
+};
+
+// Samples e at pseudo-random points and keeps the most convincing one: a value clearly above
+// its rounding error bound if there is one (returns true then), the largest |value| otherwise.
+bool find_witness(Expr e, ZeroTestResult& result) {
+  constexpr double kSafety = 4.0;  // |value| must exceed this multiple of its error bound
   const std::vector<Expr> symbols = free_symbols(e);
-  const Expr outputs[1] = {e};
-  const CompiledFunction f(outputs, symbols);
   std::mt19937_64 rng(20261122);
   std::uniform_real_distribution<double> dist(-2.0, 2.0);
   std::vector<double> point(symbols.size());
   double best = -1.0;
+  bool best_significant = false;
   for (int trial = 0; trial < 32; ++trial) {
     for (double& v : point) v = std::round(dist(rng) * 1000.0) / 1000.0;  // short, reproducible numbers
-    const double value = f(point)[0];
-    if (!std::isfinite(value)) continue;
-    if (std::abs(value) > best) {
-      best = std::abs(value);
-      result.witness_value = value;
+    const Bounded b = BoundedEvaluator(symbols, point)(e);
+    if (!std::isfinite(b.value)) continue;
+    const bool significant = std::abs(b.value) > kSafety * b.error;
+    if ((significant && !best_significant) || (significant == best_significant && std::abs(b.value) > best)) {
+      best = std::abs(b.value);
+      best_significant = significant;
+      result.witness_value = b.value;
       result.witness.clear();
       for (std::size_t i = 0; i < symbols.size(); ++i) result.witness.emplace_back(symbols[i].name(), point[i]);
     }
   }
+  return best_significant;
 }
 
 }  // namespace
@@ -390,19 +514,19 @@ ZeroTestResult test_zero(Expr e) {
       result.proved = true;  // zero under opaque atoms is zero for every value of the atoms
       return result;
     }
-    find_witness(e, result);
+    const bool significant = find_witness(e, result);
     if (builder.exact()) {
       result.verdict = ZeroVerdict::NonZero;
       result.proved = true;
       return result;
     }
     result.note = builder.note();
+    result.verdict = significant ? ZeroVerdict::NonZero : ZeroVerdict::Unknown;
   } catch (const std::overflow_error& ex) {
+    // Not decidable exactly: fall back to sampling, which can only show non-zero.
     result.note = ex.what();
-    find_witness(e, result);
+    result.verdict = find_witness(e, result) ? ZeroVerdict::NonZero : ZeroVerdict::Unknown;
   }
-  // Not decidable exactly: fall back to sampling, which can only show non-zero.
-  result.verdict = std::abs(result.witness_value) > 1e-9 ? ZeroVerdict::NonZero : ZeroVerdict::Unknown;
   return result;
 }
 
