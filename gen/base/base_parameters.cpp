@@ -49,7 +49,7 @@ ModMatrix sample_regressor(const sym::ModularFunction& tape, const dyn::DynamicM
     std::vector<std::uint64_t> values;
     sym::ModularPoint pt;
     for (;;) {
-      pt = sym::random_point(f, tape.input_count(), rng);
+      pt = sym::random_point(f, tape.circle_count(), rng);
       try {
         values = tape.evaluate(f, pt);
         break;
@@ -245,20 +245,25 @@ BaseParameterSet find_base_parameters(const robot::RobotDescription& robot, cons
 
   // Proof of every regrouping identity Y_d == sum_b beta_db Y_b.
   if (out.exact) {
+    bool undecided = false;
     if (options.prove && n <= options.symbolic_proof_max_dof) {
       out.proof = "proved symbolically (trigonometric normal form of every Y_d - sum_b beta_db Y_b)";
       for (std::size_t j = 0; j < dependent.size() && out.proved; ++j) {
         for (std::size_t i = 0; i < n; ++i) {
           std::vector<std::pair<sym::Rational, sym::Expr>> terms{{sym::Rational(1), entries[i * p + static_cast<std::size_t>(dependent[j])]}};
           for (std::size_t b = 0; b < r; ++b) terms.emplace_back(-beta[j][b], entries[i * p + static_cast<std::size_t>(kept[b])]);
-          if (sym::test_zero(sym::linear_combination(terms)).verdict != sym::ZeroVerdict::Zero) {
+          const sym::ZeroVerdict verdict = sym::test_zero(sym::linear_combination(terms)).verdict;
+          if (verdict == sym::ZeroVerdict::Unknown) {
+            undecided = true;  // outside the decidable class (e.g. alpha = pi/3): check exactly by sampling
+          } else if (verdict != sym::ZeroVerdict::Zero) {
             out.proved = false;
             out.note = "regrouping of " + model.params.list[static_cast<std::size_t>(dependent[j])].name + " is not an identity";
             break;
           }
         }
       }
-    } else {
+    }
+    if (options.prove && (n > options.symbolic_proof_max_dof || undecided)) {
       // Exact check at fresh random points of GF(2^61 - 1): a false identity survives one
       // point with probability below degree / 2^61.
       const ModMatrix check = sample_regressor(tape, model, f1, 4, 97);

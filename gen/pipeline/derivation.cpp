@@ -5,6 +5,8 @@
 #include <fmt/core.h>
 #include <stdexcept>
 
+#include "sym/modular.hpp"
+
 namespace dyncc::pipeline {
 namespace {
 
@@ -63,7 +65,11 @@ std::unique_ptr<Derivation> derive(robot::RobotDescription robot, const Derivati
   clock.lap("numeric compilation");
   base::BaseParameterOptions base_options;
   base_options.prove = options.prove_base_parameters;
-  d->base = base::find_base_parameters(d->robot, d->model, d->regressor, *d->numeric, base_options);
+  try {
+    d->base = base::find_base_parameters(d->robot, d->model, d->regressor, *d->numeric, base_options);
+  } catch (const sym::NotModular& e) {
+    throw DerivationError{d->robot.source_path.string() + ": error: the base parameters cannot be found exactly: " + e.what()};
+  }
   clock.lap("base parameters");
   if (!d->robot.base_parameters.empty()) {
     d->grouping = base::check_grouping(d->robot, d->model, d->base);

@@ -69,18 +69,36 @@ ModularFunction::ModularFunction(std::span<const Expr> outputs, std::span<const 
           break;
         case Kind::Sin:
         case Kind::Cos: {
-          // The argument must be sum_j n_j * x_j with integer n_j and no constant part.
+          // The argument must be sum_j n_j * x_j (integer n_j) plus a constant angle. A constant
+          // angle (alpha = pi/3, an offset 0.3) gets its own point on the circle: relations that
+          // hold for every value of it are then found, ones special to its value are not (the
+          // base parameters can only come out less regrouped, never wrong).
           const Expr arg = e.args()[0];
+          std::vector<std::pair<Rational, Expr>> constant_part;
           auto add_term = [&](const Rational& c, Expr t) {
-            if (t.kind() != Kind::Symbol || !c.is_integer()) throw NotModular("sin/cos argument is not an integer combination of symbols");
-            operands_.push_back({input_index(t), c});
+            if (t.kind() == Kind::Symbol) {
+              if (!c.is_integer()) throw NotModular("sin/cos argument has a fractional multiple of a symbol");
+              operands_.push_back({input_index(t), c});
+            } else if (free_symbols(t).empty()) {
+              constant_part.emplace_back(c, t);
+            } else {
+              throw NotModular("sin/cos argument is not linear in the symbols");
+            }
           };
+          Rational offset;
           if (arg.kind() == Kind::Add) {
-            if (!arg.value().is_zero()) throw NotModular("sin/cos argument has a constant offset");
+            offset = arg.value();
             for (std::size_t i = 0; i < arg.args().size(); ++i) add_term(arg.weights()[i], arg.args()[i]);
+          } else if (arg.is_number()) {
+            offset = arg.value();
           } else {
             auto [c, t] = split_coefficient(arg);
             add_term(c, t);
+          }
+          if (!offset.is_zero() || !constant_part.empty()) {
+            const Expr angle = linear_combination(constant_part, offset);
+            auto [it, inserted] = constant_angles_.try_emplace(angle, static_cast<std::uint32_t>(inputs_ + constant_angles_.size()));
+            operands_.push_back({it->second, Rational(1)});
           }
           ins.count = static_cast<std::uint32_t>(operands_.size()) - ins.first;
           break;

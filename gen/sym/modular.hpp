@@ -12,6 +12,7 @@
 #include <cstdint>
 #include <optional>
 #include <random>
+#include <unordered_map>
 #include <span>
 #include <stdexcept>
 #include <vector>
@@ -62,6 +63,8 @@ class ModularFunction {
   /// Throws std::domain_error when a division by zero occurs at this point (pick another).
   [[nodiscard]] std::vector<std::uint64_t> evaluate(const PrimeField& field, const ModularPoint& point) const;
   [[nodiscard]] std::size_t input_count() const { return inputs_; }
+  /// Points on the unit circle a ModularPoint needs: one per input and per constant angle.
+  [[nodiscard]] std::size_t circle_count() const { return inputs_ + constant_angles_.size(); }
 
  private:
   struct Instruction {
@@ -85,6 +88,7 @@ class ModularFunction {
   std::vector<Operand> operands_;
   mutable std::vector<std::pair<std::uint64_t, BoundConstants>> bound_;
   std::vector<std::uint32_t> output_slots_;
+  std::unordered_map<Expr, std::uint32_t> constant_angles_;  // -> index into the point's circles
   std::size_t inputs_ = 0;
 };
 
