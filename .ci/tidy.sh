@@ -26,7 +26,7 @@ while (($#)); do
     -p) build=$(cd "$2" && pwd); shift 2 ;;
     -j) jobs=$2; shift 2 ;;
     --fix) fix=(-fix); shift ;;
-    -h|--help) sed -n '2,17p' "$0"; exit 0 ;;
+    -h|--help) awk 'NR > 1 && /^#/ { sub(/^# ?/, ""); print; next } NR > 1 { exit }' "$0"; exit 0 ;;
     -*) echo "tidy.sh: unknown option $1" >&2; exit 2 ;;
     *) filters+=("$1"); shift ;;
   esac

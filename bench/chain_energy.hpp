@@ -71,8 +71,8 @@ struct Link {
   Expr d;                       // d_i
   Expr q, qd;
   Expr m;
-  Vec3 h;   // first moment of mass, m * centre of mass, in link coordinates
-  Mat3 I;   // inertia about the link origin, in link coordinates (symmetric)
+  Vec3 h;  // first moment of mass, m * centre of mass, in link coordinates
+  Mat3 I;  // inertia about the link origin, in link coordinates (symmetric)
 };
 
 inline std::vector<Link> make_chain(int n, const std::string& suffix) {
@@ -106,7 +106,8 @@ inline Mat3 joint_rotation(const Link& l) {
   const int sa = l.alpha_quarter_turns;  // sin(+-pi/2) = +-1, sin(0) = 0
   const Expr c = sym::cos(l.q);
   const Expr s = sym::sin(l.q);
-  return {Vec3{c, -s, Expr(0)}, Vec3{Expr(ca) * s, Expr(ca) * c, Expr(-sa)}, Vec3{Expr(sa) * s, Expr(sa) * c, Expr(ca)}};
+  return {Vec3{c, -s, Expr(0)}, Vec3{Expr(ca) * s, Expr(ca) * c, Expr(-sa)},
+          Vec3{Expr(sa) * s, Expr(sa) * c, Expr(ca)}};
 }
 
 // ^{i-1}p_i

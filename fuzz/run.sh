@@ -9,8 +9,9 @@
 #   --crashes    instead of fuzzing, replay the reproducers in fuzz/crashes/ and fail if any
 #                still crashes (for whoever fixes them)
 #   TARGET       fuzz_expression and/or fuzz_robot_yaml (default: both)
-# Environment passed through to the targets: DYNCC_FUZZ_WEAK_ROUNDTRIP=1 (fuzz_expression),
-# DYNCC_FUZZ_ALLOW_CATCH_ALL=1 (fuzz_robot_yaml); see fuzz/README.md.
+# Environment passed through to the targets: DYNCC_FUZZ_WEAK_ROUNDTRIP=1 and
+# DYNCC_FUZZ_NO_ZERO_TEST=1 (fuzz_expression), DYNCC_FUZZ_ALLOW_CATCH_ALL=1 (fuzz_robot_yaml);
+# see fuzz/README.md.
 #
 # The seeds in fuzz/corpus/<name>/ (and robots/*.yaml for the YAML target) are read-only inputs;
 # what the fuzzer discovers goes to build/fuzz/corpus/<target>/ and is reused by the next run.
@@ -29,7 +30,7 @@ while (($#)); do
     --jobs) jobs=$2; shift 2 ;;
     --no-build) build=0; shift ;;
     --crashes) replay=1; shift ;;
-    -h|--help) sed -n '2,18p' "$0"; exit 0 ;;
+    -h|--help) awk 'NR > 1 && /^#/ { sub(/^# ?/, ""); print; next } NR > 1 { exit }' "$0"; exit 0 ;;
     fuzz_expression|fuzz_robot_yaml) targets+=("$1"); shift ;;
     *) echo "run.sh: unknown argument $1" >&2; exit 2 ;;
   esac
@@ -92,13 +93,13 @@ for t in "${targets[@]}"; do
   artifacts="$root/build/fuzz/artifacts"
   mkdir -p "$corpus" "$artifacts"
   log="$root/build/fuzz/$t.log"
-  # shellcheck disable=SC2046  # word splitting of the seed list and options is intended
-  set +e
+  seeds=()
+  for d in $(seeds_of "$t"); do [[ -d $d ]] && seeds+=("$d"); done
+  read -ra options <<<"$(options_of "$t")"
+  status=0
   "$bin/$t" -max_total_time="$seconds" -timeout=5 -rss_limit_mb=2048 -print_final_stats=1 \
-    -dict="$(dict_of "$t")" $(options_of "$t") -artifact_prefix="$artifacts/$t-" \
-    "$corpus" $(seeds_of "$t") >"$log" 2>&1
-  status=$?
-  set -e
+    -dict="$(dict_of "$t")" "${options[@]}" -artifact_prefix="$artifacts/$t-" \
+    "$corpus" "${seeds[@]}" >"$log" 2>&1 || status=$?
   stats=$(grep -E '^stat::(number_of_executed_units|average_exec_per_sec|peak_rss_mb)' "$log" |
           sed 's/^stat:://' | tr -s ' ' | tr '\n' ' ')
   if ((status == 0)); then

@@ -61,7 +61,8 @@ TEST_P(ShippedRobotBase, BaseRegressorReproducesFullRegressorAndHasFullColumnRan
     ASSERT_EQ(Yb.cols(), r);
     worst_matrix = std::max(worst_matrix, relative_difference(Yb * map, Y, std::max(1.0, max_abs(Y))));
     const Eigen::VectorXd full = Y * nominal;
-    worst_nominal = std::max(worst_nominal, relative_difference(Yb * d->base.values(nominal), full, std::max(1e-9, max_abs(full))));
+    worst_nominal =
+        std::max(worst_nominal, relative_difference(Yb * d->base.values(nominal), full, std::max(1e-9, max_abs(full))));
     W.middleRows(k * n, n) = Y;
     WB.middleRows(k * n, n) = Yb;
   }

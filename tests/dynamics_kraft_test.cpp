@@ -43,9 +43,9 @@ std::array<double, 15> paper_parameters(const Params& v, const Geometry& k) {
   const double I3xx = P("i3xx") + m3 * y3 * y3 + m3 * zb * zb;
   const double I3yy = P("i3yy") + m3 * x3 * x3 + m3 * zb * zb;
   const double I3zz = P("i3zz") + m3 * x3 * x3 + m3 * y3 * y3;
-  const double I3xy = P("i3xy") - m3 * x3 * y3;         // i3xy: tensor entry (ERRATA 5)
-  const double I3xz = P("i3xz") - m3 * x3 * zb;         // i3xz: tensor entry (ERRATA 5)
-  const double I3yz = -P("i3yz") + m3 * y3 * zb;        // printed with the paper's i3yz = -(tensor entry)
+  const double I3xy = P("i3xy") - m3 * x3 * y3;   // i3xy: tensor entry (ERRATA 5)
+  const double I3xz = P("i3xz") - m3 * x3 * zb;   // i3xz: tensor entry (ERRATA 5)
+  const double I3yz = -P("i3yz") + m3 * y3 * zb;  // printed with the paper's i3yz = -(tensor entry)
   const double I4xx = P("i4xx") + m4 * k.b1 * k.b1;
   const double I4yy = P("i4yy") + m4 * x4 * x4 + m4 * k.b1 * k.b1;
   const double I4zz = P("i4zz") + m4 * x4 * x4;
@@ -91,14 +91,14 @@ Appendix appendix(const std::array<double, 15>& p, double l2, const Eigen::Vecto
   a.H_printed_h23(1, 2) = a.H_printed_h23(2, 1) = -p[10] * l2 * s3 + p[11] * c3;
 
   const double dH11_2 = 2 * (p[3] - p[5]) * s2 * c2 + 2 * p[10] * l2 * s2 * s3 - 2 * p[11] * s2 * c3;
-  const double dH11_3 = 2 * (p[4] - p[7]) * s3 * c3 + 2 * p[1] * c3 * c3 - 2 * p[1] * s3 * s3 - 2 * p[10] * l2 * c2 * c3 -
-                        2 * p[11] * c2 * s3;
-  const double dH23_2 = p[10] * l2 * c32 + p[11] * s32;   // ERRATA 3
+  const double dH11_3 = 2 * (p[4] - p[7]) * s3 * c3 + 2 * p[1] * c3 * c3 - 2 * p[1] * s3 * s3 -
+                        2 * p[10] * l2 * c2 * c3 - 2 * p[11] * c2 * s3;
+  const double dH23_2 = p[10] * l2 * c32 + p[11] * s32;  // ERRATA 3
   const double dH12_2 = p[12] * c2;
   const double dH13_3 = -p[2] * s3 - p[9] * c3;
   const double dH23_3 = -p[10] * l2 * c32 - p[11] * s32;  // ERRATA 3
-  a.C << 0.5 * dH11_2 * qd[1] + 0.5 * dH11_3 * qd[2], 0.5 * dH11_2 * qd[0] + dH12_2 * qd[1], 0.5 * dH11_3 * qd[0] + dH13_3 * qd[2],
-      -0.5 * dH11_2 * qd[0], 0.0, dH23_3 * qd[2],  //
+  a.C << 0.5 * dH11_2 * qd[1] + 0.5 * dH11_3 * qd[2], 0.5 * dH11_2 * qd[0] + dH12_2 * qd[1],
+      0.5 * dH11_3 * qd[0] + dH13_3 * qd[2], -0.5 * dH11_2 * qd[0], 0.0, dH23_3 * qd[2],  //
       -0.5 * dH11_3 * qd[0], dH23_2 * qd[1], 0.0;
   const double g = 9.81;
   a.g << 0.0, -p[13] * c2 * g, (p[10] * s3 - p[14] * c3) * g;
@@ -199,7 +199,8 @@ TEST_F(KraftAppendix, DescriptionGroupingIsTheAppendixDefinitions) {
     for (const auto& [name, value] : d_->robot.constant_doubles()) values[name] = value;
     for (std::size_t i = 0; i < 15; ++i) {
       const auto& bp = d_->robot.base_parameters[i];
-      ASSERT_EQ(bp.name, std::string("p").append(std::to_string(i)));  // not "p" + ...: GCC 12 -Wrestrict false positive
+      ASSERT_EQ(bp.name,
+                std::string("p").append(std::to_string(i)));  // not "p" + ...: GCC 12 -Wrestrict false positive
       EXPECT_NEAR(sym::evaluate(bp.value, values), p[i], 1e-14 * std::max(1.0, std::abs(p[i]))) << bp.name;
     }
   }

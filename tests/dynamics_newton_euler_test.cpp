@@ -33,8 +33,8 @@ struct Worst {
 //   Y(q, qd, v, a) p - friction == H a + C(q, qd) v + tau_g, the Slotine-Li form with v != qd,
 //     where C(q, qd) v comes from RNEA by polarisation: the Christoffel symbols c_ijk are
 //     symmetric in j, k, so C(q, qd) v = (Q(qd + v) - Q(qd) - Q(v)) / 2 with Q(x) = C(q, x) x.
-Worst compare_with_rnea(const pipeline::Derivation& d, const std::map<std::string, double>& parameters, std::uint64_t seed,
-                        const std::string& label) {
+Worst compare_with_rnea(const pipeline::Derivation& d, const std::map<std::string, double>& parameters,
+                        std::uint64_t seed, const std::string& label) {
   const ne::Chain chain = ne::from_description(d.robot, parameters);
   const Eigen::VectorXd standard = d.numeric->standard_values(parameters);
   const auto n = static_cast<Eigen::Index>(d.model.q.size());
@@ -56,12 +56,14 @@ Worst compare_with_rnea(const pipeline::Derivation& d, const std::map<std::strin
 
     auto quadratic = [&](const Eigen::VectorXd& x) { return Eigen::VectorXd(ne::rnea(chain, s.q, x, zero) - g); };
     const Eigen::VectorXd cqd = quadratic(s.qd);
-    w.coriolis = std::max(w.coriolis, relative_difference(e.C * s.qd, cqd, std::max(max_abs(cqd), 1e-6 * max_abs(e.H))));
+    w.coriolis =
+        std::max(w.coriolis, relative_difference(e.C * s.qd, cqd, std::max(max_abs(cqd), 1e-6 * max_abs(e.H))));
 
     const Eigen::VectorXd cv = 0.5 * (quadratic(s.qd + s.v) - quadratic(s.qd) - quadratic(s.v));
     const Eigen::VectorXd slotine_li = ne::mass_matrix(chain, s.q) * s.a + cv + g;
     const Eigen::VectorXd by_y = e.Y * standard - e.friction;
-    w.regressor = std::max(w.regressor, relative_difference(by_y, slotine_li, std::max(max_abs(slotine_li), max_abs(e.H))));
+    w.regressor =
+        std::max(w.regressor, relative_difference(by_y, slotine_li, std::max(max_abs(slotine_li), max_abs(e.H))));
   }
   EXPECT_LT(w.tau, kTolerance) << label << ": H qdd + C qd + g differs from RNEA";
   EXPECT_LT(w.H, kTolerance) << label << ": H differs from the RNEA columns";
@@ -130,8 +132,9 @@ std::string random_description(std::mt19937_64& rng, int index, bool arbitrary_a
   std::uniform_real_distribution<double> u(0.0, 1.0);
   const int n = std::uniform_int_distribution<int>(2, 7)(rng);
   const bool modified = u(rng) < 0.5;
-  const std::vector<std::string> angles = arbitrary_angles ? std::vector<std::string>{"0", "pi/2", "-pi/2", "pi", "pi/3", "-pi/4", "0.3", "-1.1"}
-                                                           : std::vector<std::string>{"0", "pi/2", "-pi/2", "pi"};
+  const std::vector<std::string> angles =
+      arbitrary_angles ? std::vector<std::string>{"0", "pi/2", "-pi/2", "pi", "pi/3", "-pi/4", "0.3", "-1.1"}
+                       : std::vector<std::string>{"0", "pi/2", "-pi/2", "pi"};
   std::ostringstream y;
   std::ostringstream params;
   y << "name: random_" << index << "\n"
@@ -147,8 +150,11 @@ std::string random_description(std::mt19937_64& rng, int index, bool arbitrary_a
       if (p > 0) parent = std::string("link").append(std::to_string(p));
     }
     const bool prismatic = u(rng) < 0.3;
-    std::string variable = std::string("q").append(std::to_string(i));  // (not "q" + ...: GCC 12 -Wrestrict false positive)
-    if (i > 1 && u(rng) < 0.2) variable.append(u(rng) < 0.5 ? " + q" : " - q").append(std::to_string(std::uniform_int_distribution<int>(1, i - 1)(rng)));
+    std::string variable =
+        std::string("q").append(std::to_string(i));  // (not "q" + ...: GCC 12 -Wrestrict false positive)
+    if (i > 1 && u(rng) < 0.2)
+      variable.append(u(rng) < 0.5 ? " + q" : " - q")
+          .append(std::to_string(std::uniform_int_distribution<int>(1, i - 1)(rng)));
     std::string theta = pick(rng, angles);
     std::string d = decimal(rng, -0.4, 0.4);
     if (prismatic) {
@@ -156,25 +162,28 @@ std::string random_description(std::mt19937_64& rng, int index, bool arbitrary_a
     } else {
       theta = variable + (u(rng) < 0.5 ? std::string() : " + " + pick(rng, angles));
     }
-    y << "  - name: link" << i << "\n    parent: " << parent << "\n    joint: " << (prismatic ? "prismatic" : "revolute") << "\n"
-      << "    a: " << (u(rng) < 0.2 ? std::string("0") : decimal(rng, -0.5, 0.5)) << "\n    alpha: " << pick(rng, angles) << "\n"
+    y << "  - name: link" << i << "\n    parent: " << parent
+      << "\n    joint: " << (prismatic ? "prismatic" : "revolute") << "\n"
+      << "    a: " << (u(rng) < 0.2 ? std::string("0") : decimal(rng, -0.5, 0.5))
+      << "\n    alpha: " << pick(rng, angles) << "\n"
       << "    d: " << d << "\n    theta: " << theta << "\n";
     const std::string s = std::to_string(i);
     y << "    mass: m" << s << "\n    com: [x" << s << ", y" << s << ", z" << s << "]\n"
-      << "    inertia: {xx: i" << s << "xx, yy: i" << s << "yy, zz: i" << s << "zz, xy: i" << s << "xy, xz: i" << s << "xz, yz: i" << s
-      << "yz}\n";
+      << "    inertia: {xx: i" << s << "xx, yy: i" << s << "yy, zz: i" << s << "zz, xy: i" << s << "xy, xz: i" << s
+      << "xz, yz: i" << s << "yz}\n";
     // A solid box of random size, turned by a random rotation: consistent by construction.
     const double m = 0.2 + 4.8 * u(rng);
     const double bx = 0.02 + 0.4 * u(rng), by = 0.02 + 0.4 * u(rng), bz = 0.02 + 0.4 * u(rng);
-    const Eigen::Vector3d principal(m * (by * by + bz * bz) / 12, m * (bx * bx + bz * bz) / 12, m * (bx * bx + by * by) / 12);
+    const Eigen::Vector3d principal(m * (by * by + bz * bz) / 12, m * (bx * bx + bz * bz) / 12,
+                                    m * (bx * bx + by * by) / 12);
     const Eigen::Matrix3d R = Eigen::Quaterniond(Eigen::Vector4d::Random().normalized()).toRotationMatrix();
     const Eigen::Matrix3d I = R * principal.asDiagonal() * R.transpose();
     params << "  m" << s << ": " << number(m) << "\n";
     const char* axes[] = {"x", "y", "z"};
     for (int c = 0; c < 3; ++c) params << "  " << axes[c] << s << ": " << number(0.4 * u(rng) - 0.2) << "\n";
     params << "  i" << s << "xx: " << number(I(0, 0)) << "\n  i" << s << "yy: " << number(I(1, 1)) << "\n  i" << s
-           << "zz: " << number(I(2, 2)) << "\n  i" << s << "xy: " << number(I(0, 1)) << "\n  i" << s << "xz: " << number(I(0, 2))
-           << "\n  i" << s << "yz: " << number(I(1, 2)) << "\n";
+           << "zz: " << number(I(2, 2)) << "\n  i" << s << "xy: " << number(I(0, 1)) << "\n  i" << s
+           << "xz: " << number(I(0, 2)) << "\n  i" << s << "yz: " << number(I(1, 2)) << "\n";
   }
   std::ostringstream rotors;
   for (int k = 1; k <= n; ++k) {
@@ -198,14 +207,17 @@ void check_random_descriptions(std::uint64_t seed, bool arbitrary_angles) {
     const std::string label = std::string("random description ").append(std::to_string(r));
     const auto d = derive_text(text, label);
     ASSERT_TRUE(d);
-    const Worst w = compare_with_rnea(*d, d->robot.nominal_values(), seed + static_cast<std::uint64_t>(r), std::string(label).append(":\n").append(text));
+    const Worst w = compare_with_rnea(*d, d->robot.nominal_values(), seed + static_cast<std::uint64_t>(r),
+                                      std::string(label).append(":\n").append(text));
     largest = std::max(largest, w.largest());
     if (::testing::Test::HasFailure()) return;  // one failing description is enough to read
   }
   ::testing::Test::RecordProperty("largest_relative_error", scientific(largest));
 }
 
-TEST(DynamicsNewtonEuler, RandomDescriptionsWithRightAngleTwistsMatchRecursiveNewtonEuler) { check_random_descriptions(20240611, false); }
+TEST(DynamicsNewtonEuler, RandomDescriptionsWithRightAngleTwistsMatchRecursiveNewtonEuler) {
+  check_random_descriptions(20240611, false);
+}
 
 // Twists such as pi/3 and joint offsets such as q2 + 0.3 are valid descriptions (docs/robot-description.md).
 TEST(DynamicsNewtonEuler, RandomDescriptionsWithArbitraryTwistsAndOffsetsMatchRecursiveNewtonEuler) {

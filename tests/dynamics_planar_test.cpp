@@ -64,9 +64,13 @@ TEST(DynamicsPlanar, TwoLinkArmEqualsTextbookClosedForm) {
     C << h * s.qd[1], h * (s.qd[0] + s.qd[1]), -h * s.qd[0], 0.0;
     const Eigen::Vector2d G((m1 * lc1 + m2 * l1) * g * c1 + m2 * lc2 * g * c12, m2 * lc2 * g * c12);
 
-    worst = std::max({worst, relative_difference(e.H, H, max_abs(H)), relative_difference(e.C, C, std::max(max_abs(C), max_abs(H))),
+    worst = std::max({worst, relative_difference(e.H, H, max_abs(H)),
+                      relative_difference(e.C, C, std::max(max_abs(C), max_abs(H))),
                       relative_difference(e.g, G, std::max(max_abs(G), max_abs(H)))});
-    ASSERT_LT(worst, 1e-12) << "state " << k << "\nH dyncc\n" << e.H << "\nH textbook\n" << H << "\nC dyncc\n" << e.C << "\nC textbook\n"
+    ASSERT_LT(worst, 1e-12) << "state " << k << "\nH dyncc\n"
+                            << e.H << "\nH textbook\n"
+                            << H << "\nC dyncc\n"
+                            << e.C << "\nC textbook\n"
                             << C << "\ng dyncc " << e.g.transpose() << "\ng textbook " << G.transpose();
   }
   RecordProperty("largest_relative_error", scientific(worst));

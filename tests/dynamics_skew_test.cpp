@@ -32,7 +32,8 @@ SkewResult skew_check(const dyn::Matrix& Hdot, const dyn::Matrix& C) {
       if (z.verdict == ZeroVerdict::Zero) {
         ++r.zero;
       } else if (z.verdict == ZeroVerdict::NonZero) {
-        if (r.nonzero++ == 0) r.first_nonzero = std::string("N").append(std::to_string(i + 1)).append(std::to_string(j + 1));
+        if (r.nonzero++ == 0)
+          r.first_nonzero = std::string("N").append(std::to_string(i + 1)).append(std::to_string(j + 1));
       } else {
         ++r.unknown;
       }
@@ -90,7 +91,8 @@ TEST_P(SkewSymmetry, FailsForThePapersMisprintedChristoffelForm) {
   for (std::size_t i = 0; i < n; ++i) {
     for (std::size_t j = 0; j < n; ++j) {
       Expr c;
-      for (std::size_t k = 0; k < n; ++k) c += Expr(1) / Expr(2) * (d_dq[k](m.H[i][j]) + d_dq[j](m.H[j][k]) - d_dq[i](m.H[j][k])) * m.qd[k];
+      for (std::size_t k = 0; k < n; ++k)
+        c += Expr(1) / Expr(2) * (d_dq[k](m.H[i][j]) + d_dq[j](m.H[j][k]) - d_dq[i](m.H[j][k])) * m.qd[k];
       wrong[i][j] = c;
     }
   }

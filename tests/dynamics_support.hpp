@@ -96,7 +96,8 @@ inline dyn::State random_state(Eigen::Index n, std::mt19937_64& rng) {
 }
 
 /// Largest entry of |a - b| relative to the largest entry of the references (at least `floor`).
-inline double relative_difference(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b, double scale, double floor = 1e-12) {
+inline double relative_difference(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b, double scale,
+                                  double floor = 1e-12) {
   return (a - b).cwiseAbs().maxCoeff() / std::max(scale, floor);
 }
 

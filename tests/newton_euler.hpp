@@ -36,15 +36,15 @@ using Eigen::Vector3d;
 using Eigen::VectorXd;
 
 struct Link {
-  int parent = -1;              // -1 = base
-  bool modified = false;        // Craig's modified D-H (else standard D-H)
-  bool prismatic = false;       // the joint variable is d (else theta)
-  double a = 0, alpha = 0;      // constant D-H entries
-  double d = 0, theta = 0;      // the constant one, and the offset of the joint variable
-  VectorXd coefficient;         // joint variable = offset + coefficient . q
+  int parent = -1;          // -1 = base
+  bool modified = false;    // Craig's modified D-H (else standard D-H)
+  bool prismatic = false;   // the joint variable is d (else theta)
+  double a = 0, alpha = 0;  // constant D-H entries
+  double d = 0, theta = 0;  // the constant one, and the offset of the joint variable
+  VectorXd coefficient;     // joint variable = offset + coefficient . q
   double mass = 0;
-  Vector3d com = Vector3d::Zero();             // centre of mass, link frame
-  Matrix3d inertia = Matrix3d::Zero();         // about the centre of mass, link axes (tensor)
+  Vector3d com = Vector3d::Zero();      // centre of mass, link frame
+  Matrix3d inertia = Matrix3d::Zero();  // about the centre of mass, link axes (tensor)
 };
 
 struct Chain {
@@ -203,7 +203,8 @@ inline Chain from_description(const robot::RobotDescription& robot, const std::m
     L.theta = at(link.theta, zero);
     const sym::Expr variable = link.joint_expression();
     L.coefficient = VectorXd::Zero(n);
-    for (Eigen::Index k = 0; k < n; ++k) L.coefficient[k] = at(variable, VectorXd::Unit(n, k)) - (L.prismatic ? L.d : L.theta);
+    for (Eigen::Index k = 0; k < n; ++k)
+      L.coefficient[k] = at(variable, VectorXd::Unit(n, k)) - (L.prismatic ? L.d : L.theta);
     // Affine check at an arbitrary point.
     VectorXd probe(n);
     for (Eigen::Index k = 0; k < n; ++k) probe[k] = 0.3 + 0.17 * static_cast<double>(k);

@@ -132,7 +132,8 @@ TEST(CheckCommand, PhysicalConsistencyWarnPassesWithAWarning) {
   const RunResult result = run_check(file);
   EXPECT_EQ(result.exit_code, 0) << result.output;
   EXPECT_NE(result.output.find(file.string() + ":"), std::string::npos) << result.output;
-  EXPECT_NE(result.output.find("warning: links[1].inertia: physically inconsistent"), std::string::npos) << result.output;
+  EXPECT_NE(result.output.find("warning: links[1].inertia: physically inconsistent"), std::string::npos)
+      << result.output;
   EXPECT_NE(result.output.find("warning: links[0].mass: physically inconsistent nominal values: negative mass"),
             std::string::npos)
       << result.output;

@@ -5,8 +5,8 @@
 #include <array>
 #include <cmath>
 #include <numbers>
-#include <stdexcept>
 #include <random>
+#include <stdexcept>
 #include <string>
 #include <unordered_map>
 
@@ -53,7 +53,8 @@ class Geometry {
     const Matrix4 frame = link < 0 ? translate(0, 0, 0) : world_[static_cast<std::size_t>(link)];
     const double local[3] = {value(at[0]), value(at[1]), value(at[2])};
     Vector3 result{};
-    for (int i = 0; i < 3; ++i) result[i] = frame[i][3] + frame[i][0] * local[0] + frame[i][1] * local[1] + frame[i][2] * local[2];
+    for (int i = 0; i < 3; ++i)
+      result[i] = frame[i][3] + frame[i][0] * local[0] + frame[i][1] * local[1] + frame[i][2] * local[2];
     return result;
   }
   [[nodiscard]] Vector3 axis(int link, int column) const {
@@ -71,9 +72,10 @@ class Geometry {
     const double alpha = value(link.alpha);
     const double d = value(link.d);
     const double theta = value(link.theta);
-    const Matrix4 local = robot_.convention == Convention::Modified
-                              ? multiply(multiply(rot_x(alpha), translate(a, 0, 0)), multiply(rot_z(theta), translate(0, 0, d)))
-                              : multiply(multiply(rot_z(theta), translate(0, 0, d)), multiply(translate(a, 0, 0), rot_x(alpha)));
+    const Matrix4 local =
+        robot_.convention == Convention::Modified
+            ? multiply(multiply(rot_x(alpha), translate(a, 0, 0)), multiply(rot_z(theta), translate(0, 0, d)))
+            : multiply(multiply(rot_z(theta), translate(0, 0, d)), multiply(translate(a, 0, 0), rot_x(alpha)));
     if (link.parent < 0) return local;
     return multiply(world_[static_cast<std::size_t>(link.parent)], local);
   }
@@ -104,7 +106,8 @@ TEST(RobotGeometry, KraftParallelogramClosesAndKeepsLinksParallel) {
     const std::vector<double> q = {angle(random), angle(random), angle(random)};
     const Geometry g(robot, q);
     const Loop& loop = robot.loops.at(0);
-    EXPECT_LT(distance(g.point(loop.points[0].link, loop.points[0].at), g.point(loop.points[1].link, loop.points[1].at)),
+    EXPECT_LT(distance(g.point(loop.points[0].link, loop.points[0].at),
+                       g.point(loop.points[1].link, loop.points[1].at)),
               1e-12);
     // ERRATA 6-7: forearm at absolute angle q3 (parallel to the crank), coupler parallel to the upper arm.
     const int upper_arm = 1;

@@ -197,7 +197,8 @@ TEST(SymModular, RejectsWhatItCannotEvaluateExactly) {
   EXPECT_NO_THROW(ModularFunction(ok, vars));
   // A constant angle inside sin/cos gets its own exact point on the circle, so identities that
   // hold for every value of it (here sin^2 + cos^2 = 1 and an angle sum) evaluate to exactly 0.
-  const Expr constant_angle[1] = {parse_or_throw("sin(x + 1)^2 + cos(x + 1)^2 - 1 + sin(2*x + pi/3) - sin(2*x)*cos(pi/3) - cos(2*x)*sin(pi/3)")};
+  const Expr constant_angle[1] = {
+      parse_or_throw("sin(x + 1)^2 + cos(x + 1)^2 - 1 + sin(2*x + pi/3) - sin(2*x)*cos(pi/3) - cos(2*x)*sin(pi/3)")};
   const ModularFunction f(constant_angle, vars);
   const PrimeField field(PrimeField::kPrime1);
   std::mt19937_64 rng(5);

@@ -1,15 +1,14 @@
 #include "base/base_parameters.hpp"
 
-#include <cmath>
-
-#include "sym/expand.hpp"
-#include "sym/substitute.hpp"
-#include "sym/modular.hpp"
-#include "sym/trig_normal_form.hpp"
-
 #include <algorithm>
+#include <cmath>
 #include <optional>
 #include <random>
+
+#include "sym/expand.hpp"
+#include "sym/modular.hpp"
+#include "sym/substitute.hpp"
+#include "sym/trig_normal_form.hpp"
 
 namespace dyncc::base {
 namespace {
@@ -61,7 +60,8 @@ ModMatrix sample_regressor(const sym::ModularFunction& tape, const dyn::DynamicM
       const std::size_t row = static_cast<std::size_t>(s) * n + i;
       for (std::size_t l = 0; l < p; ++l) W.at(row, l) = values[i * p + l];
       if (const int fc = model.params.coulomb_of[i]; fc >= 0) W.at(row, static_cast<std::size_t>(fc)) = uniform(rng);
-      if (const int fv = model.params.viscous_of[i]; fv >= 0) W.at(row, static_cast<std::size_t>(fv)) = pt.value[2 * n + i];
+      if (const int fv = model.params.viscous_of[i]; fv >= 0)
+        W.at(row, static_cast<std::size_t>(fv)) = pt.value[2 * n + i];
     }
   }
   return W;
@@ -106,7 +106,8 @@ class Echelon {
 
 // Solves W_B beta = W_d for every dependent column by Gauss-Jordan on [W_B | W_D].
 std::vector<std::optional<std::vector<std::uint64_t>>> solve_columns(const sym::PrimeField& f, const ModMatrix& W,
-                                                                     const std::vector<int>& kept, const std::vector<int>& dependent) {
+                                                                     const std::vector<int>& kept,
+                                                                     const std::vector<int>& dependent) {
   const std::size_t r = kept.size();
   const std::size_t m = dependent.size();
   std::vector<std::vector<std::uint64_t>> A(W.rows, std::vector<std::uint64_t>(r + m));
@@ -250,14 +251,17 @@ BaseParameterSet find_base_parameters(const robot::RobotDescription& robot, cons
       out.proof = "proved symbolically (trigonometric normal form of every Y_d - sum_b beta_db Y_b)";
       for (std::size_t j = 0; j < dependent.size() && out.proved; ++j) {
         for (std::size_t i = 0; i < n; ++i) {
-          std::vector<std::pair<sym::Rational, sym::Expr>> terms{{sym::Rational(1), entries[i * p + static_cast<std::size_t>(dependent[j])]}};
-          for (std::size_t b = 0; b < r; ++b) terms.emplace_back(-beta[j][b], entries[i * p + static_cast<std::size_t>(kept[b])]);
+          std::vector<std::pair<sym::Rational, sym::Expr>> terms{
+              {sym::Rational(1), entries[i * p + static_cast<std::size_t>(dependent[j])]}};
+          for (std::size_t b = 0; b < r; ++b)
+            terms.emplace_back(-beta[j][b], entries[i * p + static_cast<std::size_t>(kept[b])]);
           const sym::ZeroVerdict verdict = sym::test_zero(sym::linear_combination(terms)).verdict;
           if (verdict == sym::ZeroVerdict::Unknown) {
             undecided = true;  // outside the decidable class (e.g. alpha = pi/3): check exactly by sampling
           } else if (verdict != sym::ZeroVerdict::Zero) {
             out.proved = false;
-            out.note = "regrouping of " + model.params.list[static_cast<std::size_t>(dependent[j])].name + " is not an identity";
+            out.note = "regrouping of " + model.params.list[static_cast<std::size_t>(dependent[j])].name +
+                       " is not an identity";
             break;
           }
         }
@@ -271,10 +275,12 @@ BaseParameterSet find_base_parameters(const robot::RobotDescription& robot, cons
       for (std::size_t j = 0; j < dependent.size() && out.proved; ++j) {
         for (std::size_t row = 0; row < check.rows; ++row) {
           std::uint64_t acc = check.at(row, static_cast<std::size_t>(dependent[j]));
-          for (std::size_t b = 0; b < r; ++b) acc = f1.sub(acc, f1.mul(f1.from(beta[j][b]), check.at(row, static_cast<std::size_t>(kept[b]))));
+          for (std::size_t b = 0; b < r; ++b)
+            acc = f1.sub(acc, f1.mul(f1.from(beta[j][b]), check.at(row, static_cast<std::size_t>(kept[b]))));
           if (acc != 0) {
             out.proved = false;
-            out.note = "regrouping of " + model.params.list[static_cast<std::size_t>(dependent[j])].name + " failed the exact check";
+            out.note = "regrouping of " + model.params.list[static_cast<std::size_t>(dependent[j])].name +
+                       " failed the exact check";
             break;
           }
         }
@@ -286,11 +292,14 @@ BaseParameterSet find_base_parameters(const robot::RobotDescription& robot, cons
   {
     const auto np = static_cast<Eigen::Index>(p);
     Eigen::MatrixXd W(static_cast<Eigen::Index>(5 * n), np);
-    for (int s = 0; s < 5; ++s) W.middleRows(static_cast<Eigen::Index>(s) * static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(n)) = numeric.regressor(dyn::random_state(n, 300U + static_cast<std::uint64_t>(s)));
+    for (int s = 0; s < 5; ++s)
+      W.middleRows(static_cast<Eigen::Index>(s) * static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(n)) =
+          numeric.regressor(dyn::random_state(n, 300U + static_cast<std::uint64_t>(s)));
     const Eigen::MatrixXd WB = base_regressor_columns(W, kept);
     for (const int d : dependent) {
       Eigen::VectorXd predicted = Eigen::VectorXd::Zero(W.rows());
-      for (std::size_t b = 0; b < r; ++b) predicted += out.map(static_cast<Eigen::Index>(b), d) * WB.col(static_cast<Eigen::Index>(b));
+      for (std::size_t b = 0; b < r; ++b)
+        predicted += out.map(static_cast<Eigen::Index>(b), d) * WB.col(static_cast<Eigen::Index>(b));
       const double scale = std::max(W.col(d).norm(), 1e-300);
       out.relative_residual = std::max(out.relative_residual, (predicted - W.col(d)).norm() / scale);
     }
@@ -303,7 +312,8 @@ BaseParameterSet find_base_parameters(const robot::RobotDescription& robot, cons
     bp.combination = combos[b];
     bp.name = model.params.list[static_cast<std::size_t>(bp.kept)].name + (bp.combination.size() > 1 ? "R" : "");
     std::vector<std::pair<sym::Rational, sym::Expr>> terms;
-    for (const auto& [idx, coef] : bp.combination) terms.emplace_back(coef, model.params.list[static_cast<std::size_t>(idx)].definition);
+    for (const auto& [idx, coef] : bp.combination)
+      terms.emplace_back(coef, model.params.list[static_cast<std::size_t>(idx)].definition);
     bp.definition = sym::expand(sym::substitute(sym::linear_combination(terms), constants));
     out.list.push_back(std::move(bp));
   }

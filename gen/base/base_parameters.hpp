@@ -21,8 +21,8 @@
 namespace dyncc::base {
 
 struct BaseParameter {
-  std::string name;      // the kept standard parameter's name, + "R" when others are regrouped into it
-  int kept = -1;         // index of that standard parameter
+  std::string name;  // the kept standard parameter's name, + "R" when others are regrouped into it
+  int kept = -1;     // index of that standard parameter
   std::vector<std::pair<int, sym::Rational>> combination;  // standard index -> coefficient
   sym::Expr definition;  // in the description's parameter names (constants as numbers)
 };
@@ -42,8 +42,8 @@ struct BaseParameterSet {
 };
 
 struct BaseParameterOptions {
-  int samples = 0;         // regressor samples to stack; 0 = automatic
-  bool prove = true;       // prove each regrouping identity
+  int samples = 0;                         // regressor samples to stack; 0 = automatic
+  bool prove = true;                       // prove each regrouping identity
   std::size_t symbolic_proof_max_dof = 4;  // above: exact randomised check over GF(p) instead
 };
 

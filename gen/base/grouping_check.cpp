@@ -1,9 +1,10 @@
 #include "base/grouping_check.hpp"
 
-#include <algorithm>
-#include <cmath>
 #include <fmt/core.h>
 #include <fmt/ranges.h>
+
+#include <algorithm>
+#include <cmath>
 #include <unordered_map>
 
 #include "base/rational_fit.hpp"
@@ -111,7 +112,8 @@ std::vector<Eigen::VectorXd> sparse_basis(const Eigen::MatrixXd& Z, int dimensio
       while (i >= 0 && subset[static_cast<std::size_t>(i)] == s - size + i) --i;
       if (i < 0) break;
       ++subset[static_cast<std::size_t>(i)];
-      for (int j = i + 1; j < size; ++j) subset[static_cast<std::size_t>(j)] = subset[static_cast<std::size_t>(j - 1)] + 1;
+      for (int j = i + 1; j < size; ++j)
+        subset[static_cast<std::size_t>(j)] = subset[static_cast<std::size_t>(j - 1)] + 1;
     }
   }
   return chosen;
@@ -119,7 +121,8 @@ std::vector<Eigen::VectorXd> sparse_basis(const Eigen::MatrixXd& Z, int dimensio
 
 }  // namespace
 
-GroupingCheck check_grouping(const robot::RobotDescription& robot, const dyn::DynamicModel& model, const BaseParameterSet& base) {
+GroupingCheck check_grouping(const robot::RobotDescription& robot, const dyn::DynamicModel& model,
+                             const BaseParameterSet& base) {
   GroupingCheck out;
   const sym::Substitution constants = robot.constant_values();
   const auto p = static_cast<Eigen::Index>(model.params.list.size());
@@ -129,13 +132,15 @@ GroupingCheck check_grouping(const robot::RobotDescription& robot, const dyn::Dy
   std::vector<std::vector<std::pair<Eigen::Index, double>>> standard_terms;
   for (const auto& sp : model.params.list) {
     std::vector<std::pair<Eigen::Index, double>> t;
-    for (const auto& [term, c] : terms_of(sym::expand(sym::substitute(sp.definition, constants)))) t.emplace_back(index_of(monomials, term), c);
+    for (const auto& [term, c] : terms_of(sym::expand(sym::substitute(sp.definition, constants))))
+      t.emplace_back(index_of(monomials, term), c);
     standard_terms.push_back(std::move(t));
   }
   std::vector<std::vector<std::pair<Eigen::Index, double>>> user_terms;
   for (const auto& bp : robot.base_parameters) {
     std::vector<std::pair<Eigen::Index, double>> t;
-    for (const auto& [term, c] : terms_of(sym::expand(sym::substitute(bp.value, constants)))) t.emplace_back(index_of(monomials, term), c);
+    for (const auto& [term, c] : terms_of(sym::expand(sym::substitute(bp.value, constants))))
+      t.emplace_back(index_of(monomials, term), c);
     user_terms.push_back(std::move(t));
   }
   const auto m = static_cast<Eigen::Index>(monomials.size());
@@ -151,10 +156,11 @@ GroupingCheck check_grouping(const robot::RobotDescription& robot, const dyn::Dy
     for (const auto& [i, c] : user_terms[k]) b[i] += c;
     const Eigen::VectorXd x = qr.solve(b);
     if ((A * x - b).norm() > 1e-9 * std::max(1.0, b.norm())) {
-      out.errors.push_back(fmt::format("{} = {} is not a linear combination of the standard parameters (mass, first moments, "
-                                       "inertia about the link origin, rotor inertia, friction): the dynamics cannot be "
-                                       "written in it",
-                                       robot.base_parameters[k].name, sym::to_string(robot.base_parameters[k].value)));
+      out.errors.push_back(
+          fmt::format("{} = {} is not a linear combination of the standard parameters (mass, first moments, "
+                      "inertia about the link origin, rotor inertia, friction): the dynamics cannot be "
+                      "written in it",
+                      robot.base_parameters[k].name, sym::to_string(robot.base_parameters[k].value)));
       continue;
     }
     out.names.push_back(robot.base_parameters[k].name);
@@ -165,7 +171,8 @@ GroupingCheck check_grouping(const robot::RobotDescription& robot, const dyn::Dy
   for (Eigen::Index l = 0; l < p; ++l) {
     const auto kind = model.params.list[static_cast<std::size_t>(l)].kind;
     if (kind != dyn::StandardKind::FC && kind != dyn::StandardKind::FV) continue;
-    const bool mentioned = std::any_of(rows.begin(), rows.end(), [&](const Eigen::VectorXd& r) { return std::abs(r[l]) > 1e-12; });
+    const bool mentioned =
+        std::any_of(rows.begin(), rows.end(), [&](const Eigen::VectorXd& r) { return std::abs(r[l]) > 1e-12; });
     if (mentioned) continue;
     Eigen::VectorXd e = Eigen::VectorXd::Zero(p);
     e[l] = 1.0;
@@ -173,7 +180,9 @@ GroupingCheck check_grouping(const robot::RobotDescription& robot, const dyn::Dy
     out.names.push_back(model.params.list[static_cast<std::size_t>(l)].name);
     added.push_back(sym::to_string(model.params.list[static_cast<std::size_t>(l)].definition));
   }
-  if (!added.empty()) out.warnings.push_back(fmt::format("friction parameters not in base_parameters are used as they are: {}", fmt::format("{}", fmt::join(added, ", "))));
+  if (!added.empty())
+    out.warnings.push_back(fmt::format("friction parameters not in base_parameters are used as they are: {}",
+                                       fmt::format("{}", fmt::join(added, ", "))));
   if (!out.errors.empty()) return out;
 
   const auto u = static_cast<Eigen::Index>(rows.size());
@@ -188,7 +197,8 @@ GroupingCheck check_grouping(const robot::RobotDescription& robot, const dyn::Dy
     Eigen::MatrixXd extended(span.rows() + 1, p);
     extended << span, K.row(b);
     if (rank_of(extended) > rank_of(span)) {
-      out.errors.push_back(fmt::format("the grouping misses a combination the torque depends on: {} = {}", base.list[static_cast<std::size_t>(b)].name,
+      out.errors.push_back(fmt::format("the grouping misses a combination the torque depends on: {} = {}",
+                                       base.list[static_cast<std::size_t>(b)].name,
                                        sym::to_string(base.list[static_cast<std::size_t>(b)].definition)));
       span = extended;
     }
@@ -213,19 +223,21 @@ GroupingCheck check_grouping(const robot::RobotDescription& robot, const dyn::Dy
     }
     out.involved = involved_names;
     const int dim = static_cast<int>(involved.size()) - static_cast<int>(null.cols());
-    for (const Eigen::VectorXd& x : sparse_basis(Z, dim)) out.effective_combinations.push_back(combination_text(x, involved_names));
+    for (const Eigen::VectorXd& x : sparse_basis(Z, dim))
+      out.effective_combinations.push_back(combination_text(x, involved_names));
     // Redundant directions, sparsest first: the null space of M itself.
     // Redundant directions, sparsest first: vectors of span(Z) = orthogonal to the effective combinations.
     const Eigen::MatrixXd effective_space = null_space(Z.transpose());
     for (const Eigen::VectorXd& x : sparse_basis(effective_space, static_cast<int>(null.cols()))) {
       out.redundant_directions.push_back(combination_text(x, involved_names));
     }
-    out.warnings.push_back(fmt::format("the grouping is redundant ({} parameters for {} identifiable combinations): {} enter the "
-                                       "dynamics only as {}; redundant directions (changing the torque not at all): {}. A "
-                                       "controller may adapt all of them (the redundant directions drift), but identification "
-                                       "and parameter comparisons must use the {} combinations",
-                                       u, r, fmt::join(involved_names, ", "), fmt::join(out.effective_combinations, ", "),
-                                       fmt::join(out.redundant_directions, ", "), r));
+    out.warnings.push_back(
+        fmt::format("the grouping is redundant ({} parameters for {} identifiable combinations): {} enter the "
+                    "dynamics only as {}; redundant directions (changing the torque not at all): {}. A "
+                    "controller may adapt all of them (the redundant directions drift), but identification "
+                    "and parameter comparisons must use the {} combinations",
+                    u, r, fmt::join(involved_names, ", "), fmt::join(out.effective_combinations, ", "),
+                    fmt::join(out.redundant_directions, ", "), r));
   }
   return out;
 }

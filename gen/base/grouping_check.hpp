@@ -17,17 +17,18 @@
 namespace dyncc::base {
 
 struct GroupingCheck {
-  std::vector<std::string> names;  // the user's names, then any friction parameters added
-  Eigen::MatrixXd rows;            // user parameter = rows * standard parameters
-  Eigen::MatrixXd to_base;         // base = to_base * user values (valid when complete)
-  bool complete = false;           // spans the identifiable space
-  std::vector<std::string> errors;    // one per problem, readable
-  std::vector<std::string> warnings;  // redundancy, parts without effect, additions
-  std::vector<std::string> redundant_directions;  // e.g. "p3 - p0 - p4" (null space of to_base)
+  std::vector<std::string> names;                   // the user's names, then any friction parameters added
+  Eigen::MatrixXd rows;                             // user parameter = rows * standard parameters
+  Eigen::MatrixXd to_base;                          // base = to_base * user values (valid when complete)
+  bool complete = false;                            // spans the identifiable space
+  std::vector<std::string> errors;                  // one per problem, readable
+  std::vector<std::string> warnings;                // redundancy, parts without effect, additions
+  std::vector<std::string> redundant_directions;    // e.g. "p3 - p0 - p4" (null space of to_base)
   std::vector<std::string> effective_combinations;  // e.g. "p0 + p3 + p4"
-  std::vector<std::string> involved;                 // parameters that enter only in combination
+  std::vector<std::string> involved;                // parameters that enter only in combination
 };
 
-GroupingCheck check_grouping(const robot::RobotDescription& robot, const dyn::DynamicModel& model, const BaseParameterSet& base);
+GroupingCheck check_grouping(const robot::RobotDescription& robot, const dyn::DynamicModel& model,
+                             const BaseParameterSet& base);
 
 }  // namespace dyncc::base

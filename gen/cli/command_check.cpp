@@ -6,8 +6,8 @@
 
 #include <array>
 #include <cstdio>
-#include <memory>
 #include <map>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -29,8 +29,9 @@ std::string vector_text(const std::array<sym::Expr, 3>& v) {
 }
 
 std::string joint_summary(const Link& link) {
-  std::string line = fmt::format("{} [{}] {} = {}", link.name, robot::to_string(link.joint),
-                                 link.joint == robot::JointType::Revolute ? "theta" : "d", text(link.joint_expression()));
+  std::string line =
+      fmt::format("{} [{}] {} = {}", link.name, robot::to_string(link.joint),
+                  link.joint == robot::JointType::Revolute ? "theta" : "d", text(link.joint_expression()));
   // The fixed D-H entries, only the nonzero ones, so the tree stays readable.
   std::vector<std::string> fixed;
   const auto add = [&](const char* name, sym::Expr value) {
@@ -38,8 +39,10 @@ std::string joint_summary(const Link& link) {
   };
   add("a", link.a);
   add("alpha", link.alpha);
-  if (link.joint == robot::JointType::Revolute) add("d", link.d);
-  else add("theta", link.theta);
+  if (link.joint == robot::JointType::Revolute)
+    add("d", link.d);
+  else
+    add("theta", link.theta);
   if (!fixed.empty()) {
     line += "   (";
     for (std::size_t i = 0; i < fixed.size(); ++i) line += (i ? ", " : "") + fixed[i];
@@ -62,7 +65,8 @@ void print_parameters(const RobotDescription& robot) {
   // Grouped by owner: each link, then each coordinate's friction and rotor.
   std::map<std::pair<int, int>, std::vector<const robot::Parameter*>> groups;
   for (const robot::Parameter& parameter : robot.parameters) {
-    const std::pair<int, int> owner = parameter.link >= 0 ? std::pair{0, parameter.link} : std::pair{1, parameter.coordinate};
+    const std::pair<int, int> owner =
+        parameter.link >= 0 ? std::pair{0, parameter.link} : std::pair{1, parameter.coordinate};
     groups[owner].push_back(&parameter);
   }
   for (const auto& [owner, members] : groups) {
@@ -81,7 +85,8 @@ void print_summary(const RobotDescription& robot) {
   if (!robot.description.empty()) fmt::print("  {}\n", robot.description);
   fmt::print("gravity: {} m/s^2\n", vector_text(robot.gravity));
   std::string coordinates;
-  for (const sym::Expr& coordinate : robot.coordinates) coordinates += (coordinates.empty() ? "" : ", ") + coordinate.name();
+  for (const sym::Expr& coordinate : robot.coordinates)
+    coordinates += (coordinates.empty() ? "" : ", ") + coordinate.name();
   fmt::print("coordinates ({}): {}\n", robot.coordinates.size(), coordinates);
   if (!robot.constants.empty()) {
     std::string constants;
@@ -103,8 +108,8 @@ void print_summary(const RobotDescription& robot) {
   if (!robot.rotors.empty()) {
     fmt::print("rotor (reflected inertia = gear_ratio^2 * inertia):\n");
     for (const robot::Rotor& rotor : robot.rotors) {
-      fmt::print("  {}: inertia {}, gear ratio {} -> {}\n", robot.coordinate_name(rotor.coordinate), text(rotor.inertia),
-                 rotor.gear_ratio.to_string(), text(rotor.reflected_inertia()));
+      fmt::print("  {}: inertia {}, gear ratio {} -> {}\n", robot.coordinate_name(rotor.coordinate),
+                 text(rotor.inertia), rotor.gear_ratio.to_string(), text(rotor.reflected_inertia()));
     }
   }
   if (!robot.joint_limits.empty()) {

@@ -54,7 +54,8 @@ class Presenter {
   void matrix(const std::string& name, const dyn::Matrix& m, bool symmetric) const {
     heading(name);
     for (std::size_t i = 0; i < m.size(); ++i) {
-      for (std::size_t j = symmetric ? i : 0; j < m[i].size(); ++j) entry(fmt::format("{}{}{}", name, i + 1, j + 1), m[i][j]);
+      for (std::size_t j = symmetric ? i : 0; j < m[i].size(); ++j)
+        entry(fmt::format("{}{}{}", name, i + 1, j + 1), m[i][j]);
     }
   }
 
@@ -99,13 +100,15 @@ int run_derive(const DeriveOptions& o) {
   const Presenter p(*d, o.latex);
   if (o.latex) fmt::print("\\begin{{align*}}\n");
   if (!o.latex) {
-    fmt::print("{}: {} coordinates ({}), {} links, {} standard parameters, {} base parameters\n", d->robot.name, d->model.q.size(),
-               [&] {
-                 std::string s;
-                 for (const auto& q : d->model.q) s += (s.empty() ? "" : ", ") + q.name();
-                 return s;
-               }(),
-               d->robot.links.size(), d->model.params.list.size(), d->base.list.size());
+    fmt::print(
+        "{}: {} coordinates ({}), {} links, {} standard parameters, {} base parameters\n", d->robot.name,
+        d->model.q.size(),
+        [&] {
+          std::string s;
+          for (const auto& q : d->model.q) s += (s.empty() ? "" : ", ") + q.name();
+          return s;
+        }(),
+        d->robot.links.size(), d->model.params.list.size(), d->base.list.size());
     fmt::print("rates: ");
     for (const auto& qd : d->model.qd) fmt::print("{} ", qd.name());
     fmt::print("  (tau = H*qdd + C*qd + g + FC*sgn(qd) + FV*qd)\n");
@@ -128,7 +131,9 @@ int run_derive(const DeriveOptions& o) {
     const std::string qd = d->model.qd[k].name();
     std::string text;
     if (fc >= 0) text += fmt::format("{}*sgn({})", d->model.params.list[static_cast<std::size_t>(fc)].name, qd);
-    if (fv >= 0) text += fmt::format("{}{}*{}", text.empty() ? "" : " + ", d->model.params.list[static_cast<std::size_t>(fv)].name, qd);
+    if (fv >= 0)
+      text += fmt::format("{}{}*{}", text.empty() ? "" : " + ", d->model.params.list[static_cast<std::size_t>(fv)].name,
+                          qd);
     if (text.empty()) text = "0";
     if (o.latex) {
       fmt::print("f_{{{}}} &= \\mathrm{{{}}} \\\\\n", k + 1, text);
@@ -141,7 +146,8 @@ int run_derive(const DeriveOptions& o) {
     for (const auto& b : d->base.list) {
       const auto& sp = d->model.params.list[static_cast<std::size_t>(b.kept)];
       if (sp.kind == dyn::StandardKind::FC) {
-        if (sp.coordinate == static_cast<int>(i)) p.text(fmt::format("Y{}[{}]", i + 1, b.name), fmt::format("sgn({})", d->model.qd[i].name()));
+        if (sp.coordinate == static_cast<int>(i))
+          p.text(fmt::format("Y{}[{}]", i + 1, b.name), fmt::format("sgn({})", d->model.qd[i].name()));
         continue;
       }
       if (sp.kind == dyn::StandardKind::FV) {
@@ -161,9 +167,11 @@ int run_derive(const DeriveOptions& o) {
                d->grouping->complete ? "spans the identifiable space" : "incomplete");
     if (!d->grouping->involved.empty()) {
       fmt::print("  ");
-      for (std::size_t i = 0; i < d->grouping->involved.size(); ++i) fmt::print("{}{}", i ? ", " : "", d->grouping->involved[i]);
+      for (std::size_t i = 0; i < d->grouping->involved.size(); ++i)
+        fmt::print("{}{}", i ? ", " : "", d->grouping->involved[i]);
       fmt::print(" enter only as ");
-      for (std::size_t i = 0; i < d->grouping->effective_combinations.size(); ++i) fmt::print("{}{}", i ? ", " : "", d->grouping->effective_combinations[i]);
+      for (std::size_t i = 0; i < d->grouping->effective_combinations.size(); ++i)
+        fmt::print("{}{}", i ? ", " : "", d->grouping->effective_combinations[i]);
       fmt::print("\n");
     }
   }

@@ -45,13 +45,15 @@ void print_matrix(const std::string& name, const Eigen::MatrixXd& m) {
   }
 }
 
-bool take(const std::vector<double>& given, std::size_t n, Eigen::VectorXd& out, const char* flag, const Eigen::VectorXd* fallback) {
+bool take(const std::vector<double>& given, std::size_t n, Eigen::VectorXd& out, const char* flag,
+          const Eigen::VectorXd* fallback) {
   if (given.empty()) {
     out = fallback != nullptr ? *fallback : Eigen::VectorXd::Zero(static_cast<Eigen::Index>(n));
     return true;
   }
   if (given.size() != n) {
-    fmt::print(stderr, "error: {} needs {} comma-separated values (one per coordinate), found {}\n", flag, n, given.size());
+    fmt::print(stderr, "error: {} needs {} comma-separated values (one per coordinate), found {}\n", flag, n,
+               given.size());
     return false;
   }
   out = Eigen::Map<const Eigen::VectorXd>(given.data(), static_cast<Eigen::Index>(n));
@@ -126,7 +128,9 @@ int run_eval(const EvalOptions& o) {
 
 void register_eval_command(CLI::App& app, int& exit_code) {
   auto o = std::make_shared<EvalOptions>();
-  auto* cmd = app.add_subcommand("eval", "Evaluate H, C, g, friction, tau, Y and the base parameters at a state (nominal parameters)");
+  auto* cmd =
+      app.add_subcommand("eval",
+                         "Evaluate H, C, g, friction, tau, Y and the base parameters at a state (nominal parameters)");
   cmd->add_option("ROBOT", o->robot, "Robot description (YAML)")->required();
   cmd->add_option("--q", o->q, "Coordinates, comma-separated")->delimiter(',');
   cmd->add_option("--qd", o->qd, "Coordinate rates (default 0)")->delimiter(',');

@@ -127,7 +127,9 @@ void register_expr_command(CLI::App& app, int& exit_code) {
   auto* expr = app.add_subcommand("expr", "Differentiate, simplify, zero-test and evaluate expressions");
   expr->require_subcommand(1);
   auto options = std::make_shared<ExprOptions>();
-  auto with_latex = [&](CLI::App* sub) { sub->add_flag("--latex", options->latex, "Print LaTeX instead of plain text"); };
+  auto with_latex = [&](CLI::App* sub) {
+    sub->add_flag("--latex", options->latex, "Print LaTeX instead of plain text");
+  };
 
   auto* diff = expr->add_subcommand("diff", "Derivative of EXPR with respect to VAR");
   diff->add_option("VAR", options->variable, "Variable")->required();
@@ -135,7 +137,8 @@ void register_expr_command(CLI::App& app, int& exit_code) {
   with_latex(diff);
   diff->callback([&exit_code, options] { exit_code = run_diff(*options); });
 
-  auto* simplify = expr->add_subcommand("simplify", "Smallest equivalent form (canonical, expanded or trigonometric normal form)");
+  auto* simplify =
+      expr->add_subcommand("simplify", "Smallest equivalent form (canonical, expanded or trigonometric normal form)");
   simplify->add_option("EXPR", options->expression, "Expression")->required();
   with_latex(simplify);
   simplify->callback([&exit_code, options] { exit_code = run_simplify(*options); });
@@ -145,7 +148,8 @@ void register_expr_command(CLI::App& app, int& exit_code) {
   with_latex(expand);
   expand->callback([&exit_code, options] { exit_code = run_expand(*options); });
 
-  auto* zero = expr->add_subcommand("zero", "Decide whether EXPR is identically zero (exit 0) or not (exit 1, with a witness)");
+  auto* zero =
+      expr->add_subcommand("zero", "Decide whether EXPR is identically zero (exit 0) or not (exit 1, with a witness)");
   zero->add_option("EXPR", options->expression, "Expression")->required();
   zero->callback([&exit_code, options] { exit_code = run_zero(*options); });
 

@@ -48,7 +48,8 @@ CheckResult prove_skew_symmetry(const pipeline::Derivation& d, const dyn::Matrix
       }
     }
   }
-  return {"Hdot - 2C skew-symmetric (symbolic proof)", failed == 0, fmt::format("{}/{} entries proved", proved, proved + failed),
+  return {"Hdot - 2C skew-symmetric (symbolic proof)", failed == 0,
+          fmt::format("{}/{} entries proved", proved, proved + failed),
           failed == 0 ? "normal form of every N_ij + N_ji is exactly 0" : first_failure};
 }
 
@@ -131,19 +132,23 @@ int run_verify(const VerifyOptions& o) {
     // (c) H symmetric positive definite
     const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(e.H);
     min_eigen = std::min(min_eigen, eig.eigenvalues().minCoeff());
-    if (eig.eigenvalues().minCoeff() <= 0.0 || (e.H - e.H.transpose()).cwiseAbs().maxCoeff() > 1e-12 * e.H.cwiseAbs().maxCoeff()) ++not_pd;
+    if (eig.eigenvalues().minCoeff() <= 0.0 ||
+        (e.H - e.H.transpose()).cwiseAbs().maxCoeff() > 1e-12 * e.H.cwiseAbs().maxCoeff())
+      ++not_pd;
     // (d) regressor: Y p == H a + C v + g + friction, both with standard and base parameters
     const Eigen::VectorXd by_y = e.Y * nominal;
     const Eigen::VectorXd by_base = base::base_regressor(d->base, e.Y) * d->base.values(nominal);
     const double tscale = std::max(1e-9, e.tau.cwiseAbs().maxCoeff());
-    worst_relation = std::max({worst_relation, (by_y - e.tau).cwiseAbs().maxCoeff() / tscale, (by_base - e.tau).cwiseAbs().maxCoeff() / tscale});
+    worst_relation = std::max({worst_relation, (by_y - e.tau).cwiseAbs().maxCoeff() / tscale,
+                               (by_base - e.tau).cwiseAbs().maxCoeff() / tscale});
   }
   checks.push_back({"|N + N^T| at random states", worst_skew < 1e-10, fmt::format("{:.3g}", worst_skew),
                     fmt::format("largest |N + N^T| / max(1, |Hdot|) over {} states", o.samples)});
   checks.push_back({"H symmetric positive definite", not_pd == 0, fmt::format("min eigenvalue {:.4g}", min_eigen),
                     fmt::format("{} of {} states failed (nominal parameters)", not_pd, o.samples)});
-  checks.push_back({"Y p == H a + C v + g + friction", worst_relation < 1e-9, fmt::format("{:.3g}", worst_relation),
-                    fmt::format("largest relative difference over {} states, standard and base parameters", o.samples)});
+  checks.push_back(
+      {"Y p == H a + C v + g + friction", worst_relation < 1e-9, fmt::format("{:.3g}", worst_relation),
+       fmt::format("largest relative difference over {} states, standard and base parameters", o.samples)});
 
   // (e) energy conservation
   // Conserved up to integrator error: the drift must be tiny, or shrink like RK4's dt^4 when
@@ -157,12 +162,14 @@ int run_verify(const VerifyOptions& o) {
 
   // (f) loops
   for (const auto& loop : d->loops) {
-    checks.push_back({"loop " + loop.name + " closes", loop.closed,
-                      fmt::format("gap {:.3g} m at a sample", std::hypot(loop.residual[0], loop.residual[1], loop.residual[2])),
-                      loop.proved ? "proved: every component of the gap is identically zero" : "by evaluation: " + loop.detail});
+    checks.push_back(
+        {"loop " + loop.name + " closes", loop.closed,
+         fmt::format("gap {:.3g} m at a sample", std::hypot(loop.residual[0], loop.residual[1], loop.residual[2])),
+         loop.proved ? "proved: every component of the gap is identically zero" : "by evaluation: " + loop.detail});
   }
   // base parameters
-  checks.push_back({"base parameters", d->base.proved, fmt::format("{} of {} standard", d->base.list.size(), d->model.params.list.size()),
+  checks.push_back({"base parameters", d->base.proved,
+                    fmt::format("{} of {} standard", d->base.list.size(), d->model.params.list.size()),
                     d->base.proved ? d->base.proof : d->base.note});
 
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -175,11 +182,13 @@ int run_verify(const VerifyOptions& o) {
     j["seconds"] = seconds;
     j["samples"] = o.samples;
     j["checks"] = nlohmann::json::array();
-    for (const auto& c : checks) j["checks"].push_back({{"name", c.name}, {"passed", c.passed}, {"value", c.value}, {"detail", c.detail}});
+    for (const auto& c : checks)
+      j["checks"].push_back({{"name", c.name}, {"passed", c.passed}, {"value", c.value}, {"detail", c.detail}});
     fmt::print("{}\n", j.dump(2));
   } else {
     fmt::print("verify {} ({} coordinates, {} samples)\n", d->robot.name, n, o.samples);
-    for (const auto& c : checks) fmt::print("  {:<4} {:<48} {:<24} {}\n", c.passed ? "ok" : "FAIL", c.name, c.value, c.detail);
+    for (const auto& c : checks)
+      fmt::print("  {:<4} {:<48} {:<24} {}\n", c.passed ? "ok" : "FAIL", c.name, c.value, c.detail);
     fmt::print("{} in {:.2f} s\n", all ? "all checks passed" : "SOME CHECKS FAILED", seconds);
   }
   return all ? kSuccess : kCheckFailed;
@@ -189,7 +198,8 @@ int run_verify(const VerifyOptions& o) {
 
 void register_verify_command(CLI::App& app, int& exit_code) {
   auto o = std::make_shared<VerifyOptions>();
-  auto* cmd = app.add_subcommand("verify", "Prove Hdot-2C skew-symmetric and check H, Y, energy and loops at random states");
+  auto* cmd =
+      app.add_subcommand("verify", "Prove Hdot-2C skew-symmetric and check H, Y, energy and loops at random states");
   cmd->add_option("ROBOT", o->robot, "Robot description (YAML)")->required();
   cmd->add_option("--samples", o->samples, "Random states for the numeric checks")->check(CLI::Range(1, 10000000));
   cmd->add_flag("--json", o->json, "Machine-readable output");

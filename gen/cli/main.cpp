@@ -1,7 +1,7 @@
 // dyncc: robot description -> verified dynamics -> generated controller code.
-#include <CLI/CLI.hpp>
 #include <fmt/core.h>
 
+#include <CLI/CLI.hpp>
 #include <exception>
 
 #include "cli/commands.hpp"

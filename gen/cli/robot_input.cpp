@@ -13,7 +13,8 @@ std::optional<robot::RobotDescription> load_description(const std::string& path)
   return std::move(result.robot);
 }
 
-std::unique_ptr<pipeline::Derivation> load_and_derive(const std::string& path, const pipeline::DerivationOptions& options) {
+std::unique_ptr<pipeline::Derivation> load_and_derive(const std::string& path,
+                                                      const pipeline::DerivationOptions& options) {
   auto robot = load_description(path);
   if (!robot) return nullptr;
   try {

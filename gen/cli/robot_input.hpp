@@ -15,6 +15,7 @@ namespace dyncc::cli {
 std::optional<robot::RobotDescription> load_description(const std::string& path);
 
 /// Loads and derives the model; prints diagnostics and derivation errors. Null on failure.
-std::unique_ptr<pipeline::Derivation> load_and_derive(const std::string& path, const pipeline::DerivationOptions& options = {});
+std::unique_ptr<pipeline::Derivation> load_and_derive(const std::string& path,
+                                                      const pipeline::DerivationOptions& options = {});
 
 }  // namespace dyncc::cli

@@ -22,11 +22,12 @@ std::string rate_name(const std::string& coordinate, const std::string& mark, st
   return name;
 }
 
-std::vector<Expr> make_symbols(const robot::RobotDescription& robot, const std::string& mark, std::set<std::string>& taken,
-                               bool prefix_style) {
+std::vector<Expr> make_symbols(const robot::RobotDescription& robot, const std::string& mark,
+                               std::set<std::string>& taken, bool prefix_style) {
   std::vector<Expr> out;
   for (std::size_t i = 0; i < robot.coordinates.size(); ++i) {
-    std::string name = prefix_style ? mark + std::to_string(i + 1) : rate_name(robot.coordinates[i].name(), mark, taken);
+    std::string name =
+        prefix_style ? mark + std::to_string(i + 1) : rate_name(robot.coordinates[i].name(), mark, taken);
     if (prefix_style) {
       while (taken.contains(name)) name += "_";
       taken.insert(name);
@@ -73,7 +74,8 @@ DynamicModel derive_model(const robot::RobotDescription& robot, const kin::Kinem
     }
     // ---- potential energy: V = -g . (M p + R h)
     const Vec3 first_moment_base = mass * lk.origin + lk.rotation * h;
-    for (int c = 0; c < 3; ++c) potential -= robot.gravity[static_cast<std::size_t>(c)] * first_moment_base[static_cast<std::size_t>(c)];
+    for (int c = 0; c < 3; ++c)
+      potential -= robot.gravity[static_cast<std::size_t>(c)] * first_moment_base[static_cast<std::size_t>(c)];
   }
   for (std::size_t k = 0; k < n; ++k) {
     const int ia = m.params.rotor_of[k];

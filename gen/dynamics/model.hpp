@@ -22,9 +22,9 @@ struct DynamicModel {
   std::vector<sym::Expr> v;   // reference velocity of the Slotine-Li regressor (qd_r)
   std::vector<sym::Expr> a;   // reference acceleration (qdd_r)
   StandardParameters params;
-  Matrix H;                   // symmetric: H[i][j] and H[j][i] are the same node
-  Matrix C;                   // Christoffel form: Hdot - 2C is skew-symmetric
-  std::vector<sym::Expr> g;   // gravity torque
+  Matrix H;                  // symmetric: H[i][j] and H[j][i] are the same node
+  Matrix C;                  // Christoffel form: Hdot - 2C is skew-symmetric
+  std::vector<sym::Expr> g;  // gravity torque
   sym::Expr kinetic_energy;
   sym::Expr potential_energy;
   std::vector<Matrix> christoffel;  // christoffel[k][i][j] = c_ijk, so C_ij = sum_k c_ijk qd_k

@@ -28,7 +28,8 @@ std::vector<sym::Expr> flatten(const Matrix& m) {
   return out;
 }
 
-sym::CompiledFunction compile_dynamics(const DynamicModel& m, const sym::Substitution& constants, const std::vector<sym::Expr>& ps) {
+sym::CompiledFunction compile_dynamics(const DynamicModel& m, const sym::Substitution& constants,
+                                       const std::vector<sym::Expr>& ps) {
   std::vector<sym::Expr> outs = flatten(m.H);
   const auto c = flatten(m.C);
   outs.insert(outs.end(), c.begin(), c.end());
@@ -36,11 +37,13 @@ sym::CompiledFunction compile_dynamics(const DynamicModel& m, const sym::Substit
   return {substituted(outs, constants), concat({&m.q, &m.qd, &ps})};
 }
 
-sym::CompiledFunction compile_mass(const DynamicModel& m, const sym::Substitution& constants, const std::vector<sym::Expr>& ps) {
+sym::CompiledFunction compile_mass(const DynamicModel& m, const sym::Substitution& constants,
+                                   const std::vector<sym::Expr>& ps) {
   return {substituted(flatten(m.H), constants), concat({&m.q, &ps})};
 }
 
-sym::CompiledFunction compile_energy(const DynamicModel& m, const sym::Substitution& constants, const std::vector<sym::Expr>& ps) {
+sym::CompiledFunction compile_energy(const DynamicModel& m, const sym::Substitution& constants,
+                                     const std::vector<sym::Expr>& ps) {
   const std::vector<sym::Expr> outs = {sym::substitute(m.kinetic_energy + m.potential_energy, constants)};
   return {outs, concat({&m.q, &m.qd, &ps})};
 }
@@ -99,7 +102,8 @@ Evaluation NumericModel::evaluate(const State& s, const Eigen::VectorXd& standar
   const std::vector<double> out = dynamics_(in);
   Evaluation e;
   e.H = Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(out.data(), n, n);
-  e.C = Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(out.data() + n * n, n, n);
+  e.C = Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(out.data() + n * n, n,
+                                                                                                 n);
   e.g = Eigen::Map<const Eigen::VectorXd>(out.data() + 2 * n * n, n);
   e.friction = friction(s, standard);
   e.tau = e.H * s.a + e.C * s.v + e.g + e.friction;
@@ -113,7 +117,8 @@ Eigen::MatrixXd NumericModel::regressor(const State& s) const {
   std::vector<double> in;
   for (const Eigen::VectorXd* v : {&s.q, &s.qd, &s.v, &s.a}) in.insert(in.end(), v->data(), v->data() + n);
   const std::vector<double> out = regressor_(in);
-  Eigen::MatrixXd Y = Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(out.data(), n, p);
+  Eigen::MatrixXd Y =
+      Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(out.data(), n, p);
   for (std::size_t k = 0; k < n_; ++k) {
     const auto i = static_cast<Eigen::Index>(k);
     if (const int fc = model_.params.coulomb_of[k]; fc >= 0) Y(i, fc) = (s.qd[i] > 0) - (s.qd[i] < 0);
@@ -130,7 +135,8 @@ Eigen::MatrixXd NumericModel::mass_matrix(const Eigen::VectorXd& q, const Eigen:
   return Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(out.data(), n, n);
 }
 
-double NumericModel::energy(const Eigen::VectorXd& q, const Eigen::VectorXd& qd, const Eigen::VectorXd& standard) const {
+double NumericModel::energy(const Eigen::VectorXd& q, const Eigen::VectorXd& qd,
+                            const Eigen::VectorXd& standard) const {
   std::vector<double> in(q.data(), q.data() + q.size());
   in.insert(in.end(), qd.data(), qd.data() + qd.size());
   in.insert(in.end(), standard.data(), standard.data() + standard.size());

@@ -38,7 +38,8 @@ class NumericModel {
   /// H alone (cheaper), for positive-definiteness and energy checks.
   [[nodiscard]] Eigen::MatrixXd mass_matrix(const Eigen::VectorXd& q, const Eigen::VectorXd& standard) const;
   /// Kinetic + potential energy.
-  [[nodiscard]] double energy(const Eigen::VectorXd& q, const Eigen::VectorXd& qd, const Eigen::VectorXd& standard) const;
+  [[nodiscard]] double energy(const Eigen::VectorXd& q, const Eigen::VectorXd& qd,
+                              const Eigen::VectorXd& standard) const;
 
   [[nodiscard]] std::size_t dof() const { return n_; }
   [[nodiscard]] std::size_t parameter_count() const { return p_; }

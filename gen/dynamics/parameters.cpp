@@ -7,7 +7,7 @@
 namespace dyncc::dyn {
 
 std::string_view to_string(StandardKind kind) {
-  static constexpr std::array<std::string_view, 13> names = {"M", "MX", "MY", "MZ", "XX", "XY", "XZ",
+  static constexpr std::array<std::string_view, 13> names = {"M",  "MX", "MY", "MZ", "XX", "XY", "XZ",
                                                              "YY", "YZ", "ZZ", "IA", "FC", "FV"};
   return names[static_cast<std::size_t>(kind)];
 }
@@ -70,7 +70,8 @@ StandardParameters standard_parameters(const robot::RobotDescription& robot) {
   out.coulomb_of.assign(n, -1);
   out.viscous_of.assign(n, -1);
   for (const robot::Rotor& r : robot.rotors) {
-    out.rotor_of[static_cast<std::size_t>(r.coordinate)] = add(StandardKind::IA, r.coordinate + 1, r.reflected_inertia(), -1, r.coordinate);
+    out.rotor_of[static_cast<std::size_t>(r.coordinate)] =
+        add(StandardKind::IA, r.coordinate + 1, r.reflected_inertia(), -1, r.coordinate);
   }
   for (const robot::Friction& f : robot.friction) {
     const auto k = static_cast<std::size_t>(f.coordinate);

@@ -19,12 +19,12 @@ namespace dyncc::dyn {
 enum class StandardKind { M, MX, MY, MZ, XX, XY, XZ, YY, YZ, ZZ, IA, FC, FV };
 
 struct StandardParameter {
-  std::string name;       // e.g. "MX2"
-  sym::Expr symbol;       // the symbol the derived expressions contain
-  sym::Expr definition;   // in the description's parameter names and constants
+  std::string name;      // e.g. "MX2"
+  sym::Expr symbol;      // the symbol the derived expressions contain
+  sym::Expr definition;  // in the description's parameter names and constants
   StandardKind kind = StandardKind::M;
-  int link = -1;          // inertial kinds
-  int coordinate = -1;    // IA, FC, FV
+  int link = -1;        // inertial kinds
+  int coordinate = -1;  // IA, FC, FV
 };
 
 struct StandardParameters {
@@ -33,7 +33,9 @@ struct StandardParameters {
   std::vector<std::array<int, 10>> of_link;
   std::vector<int> rotor_of, coulomb_of, viscous_of;  // per coordinate, -1 when absent
 
-  [[nodiscard]] sym::Expr symbol_or_zero(int index) const { return index < 0 ? sym::Expr(0) : list[static_cast<std::size_t>(index)].symbol; }
+  [[nodiscard]] sym::Expr symbol_or_zero(int index) const {
+    return index < 0 ? sym::Expr(0) : list[static_cast<std::size_t>(index)].symbol;
+  }
   [[nodiscard]] std::vector<sym::Expr> symbols() const;
   /// standard symbol -> definition in the description's names.
   [[nodiscard]] sym::Substitution definitions() const;

@@ -15,10 +15,10 @@
 namespace dyncc::kin {
 
 struct LinkKinematics {
-  Mat3 rotation;                // link frame -> base frame
-  Vec3 origin;                  // link frame origin in base coordinates
-  std::vector<Vec3> angular;    // per coordinate k: d(omega)/d(qd_k), in link-frame coordinates
-  std::vector<Vec3> linear;     // per coordinate k: d(v_origin)/d(qd_k), in link-frame coordinates
+  Mat3 rotation;              // link frame -> base frame
+  Vec3 origin;                // link frame origin in base coordinates
+  std::vector<Vec3> angular;  // per coordinate k: d(omega)/d(qd_k), in link-frame coordinates
+  std::vector<Vec3> linear;   // per coordinate k: d(v_origin)/d(qd_k), in link-frame coordinates
 };
 
 struct Kinematics {
@@ -30,7 +30,7 @@ struct Kinematics {
 struct RelativeFrame {
   Mat3 rotation;
   Vec3 origin;
-  Vec3 joint_axis;  // axis of the joint's rotation/translation, in parent coordinates
+  Vec3 joint_axis;                 // axis of the joint's rotation/translation, in parent coordinates
   bool axis_through_child_origin;  // modified D-H: rotation about the child's own z axis
 };
 RelativeFrame dh_frame(robot::Convention convention, sym::Expr a, sym::Expr alpha, sym::Expr d, sym::Expr theta);

@@ -12,9 +12,9 @@ namespace dyncc::kin {
 
 struct LoopCheck {
   std::string name;
-  bool closed = false;   // proved: every component of the gap is identically zero
-  bool proved = false;   // the verdict is a proof (the gap lies in the decidable class)
-  std::array<double, 3> residual{};  // gap at the sample point (point 2 - point 1, base frame)
+  bool closed = false;                                 // proved: every component of the gap is identically zero
+  bool proved = false;                                 // the verdict is a proof (the gap lies in the decidable class)
+  std::array<double, 3> residual{};                    // gap at the sample point (point 2 - point 1, base frame)
   std::vector<std::pair<std::string, double>> sample;  // the sample coordinates
   std::string detail;
 };

@@ -1,8 +1,9 @@
 #include "pipeline/derivation.hpp"
 
+#include <fmt/core.h>
+
 #include <chrono>
 #include <cmath>
-#include <fmt/core.h>
 #include <stdexcept>
 
 #include "sym/modular.hpp"
@@ -27,11 +28,12 @@ class StageClock {
 std::string loop_error(const robot::RobotDescription& robot, const robot::Loop& loop, const kin::LoopCheck& check) {
   std::string at;
   for (const auto& [name, value] : check.sample) at += fmt::format("{}{}={}", at.empty() ? "" : ", ", name, value);
-  return fmt::format("{}:{}:{}: error: loops.{}: the loop does not close: at {} the two points are {:.6g} m apart (gap "
-                     "[{:.6g}, {:.6g}, {:.6g}] in the base frame)",
-                     robot.source_path.string(), loop.location.line, loop.location.column, loop.name, at,
-                     std::hypot(check.residual[0], check.residual[1], check.residual[2]), check.residual[0],
-                     check.residual[1], check.residual[2]);
+  return fmt::format(
+      "{}:{}:{}: error: loops.{}: the loop does not close: at {} the two points are {:.6g} m apart (gap "
+      "[{:.6g}, {:.6g}, {:.6g}] in the base frame)",
+      robot.source_path.string(), loop.location.line, loop.location.column, loop.name, at,
+      std::hypot(check.residual[0], check.residual[1], check.residual[2]), check.residual[0], check.residual[1],
+      check.residual[2]);
 }
 
 }  // namespace
@@ -68,17 +70,20 @@ std::unique_ptr<Derivation> derive(robot::RobotDescription robot, const Derivati
   try {
     d->base = base::find_base_parameters(d->robot, d->model, d->regressor, *d->numeric, base_options);
   } catch (const sym::NotModular& e) {
-    throw DerivationError{d->robot.source_path.string() + ": error: the base parameters cannot be found exactly: " + e.what()};
+    throw DerivationError{d->robot.source_path.string() +
+                          ": error: the base parameters cannot be found exactly: " + e.what()};
   }
   clock.lap("base parameters");
   if (!d->robot.base_parameters.empty()) {
     d->grouping = base::check_grouping(d->robot, d->model, d->base);
     const robot::SourceLocation at = d->robot.base_parameters.front().location;
     const std::string where = fmt::format("{}:{}:{}", d->robot.source_path.string(), at.line, at.column);
-    for (const std::string& w : d->grouping->warnings) d->warnings.push_back(fmt::format("{}: warning: base_parameters: {}", where, w));
+    for (const std::string& w : d->grouping->warnings)
+      d->warnings.push_back(fmt::format("{}: warning: base_parameters: {}", where, w));
     if (!d->grouping->errors.empty()) {
       std::string message;
-      for (const std::string& e : d->grouping->errors) message += fmt::format("{}{}: error: base_parameters: {}", message.empty() ? "" : "\n", where, e);
+      for (const std::string& e : d->grouping->errors)
+        message += fmt::format("{}{}: error: base_parameters: {}", message.empty() ? "" : "\n", where, e);
       throw DerivationError{message};
     }
     clock.lap("user grouping check");

@@ -47,8 +47,8 @@ std::string_view to_string(JointType joint);
 
 struct Constant {
   std::string name;
-  sym::Expr symbol;      // sym::symbol(name): what the expressions contain
-  sym::Rational value;   // exact, as written ("0.180" is 9/50)
+  sym::Expr symbol;     // sym::symbol(name): what the expressions contain
+  sym::Rational value;  // exact, as written ("0.180" is 9/50)
   SourceLocation location;
 };
 
@@ -86,12 +86,12 @@ std::string_view to_string(ParameterRole role);
 struct Parameter {
   std::string name;
   sym::Expr symbol;
-  double nominal = 0.0;     // from `parameters`
+  double nominal = 0.0;  // from `parameters`
   ParameterRole role = ParameterRole::Mass;
-  int link = -1;            // owning link for inertial roles, else -1
-  int coordinate = -1;      // owning coordinate for friction/rotor roles, else -1
-  std::string field;        // where it is used, e.g. "links[2].inertia.xy"
-  SourceLocation location;  // of that use
+  int link = -1;                    // owning link for inertial roles, else -1
+  int coordinate = -1;              // owning coordinate for friction/rotor roles, else -1
+  std::string field;                // where it is used, e.g. "links[2].inertia.xy"
+  SourceLocation location;          // of that use
   SourceLocation nominal_location;  // of its entry in `parameters`
 };
 
@@ -119,8 +119,8 @@ struct JointLimit {
 };
 
 struct LoopPoint {
-  std::string link_name;  // a link or "base"
-  int link = -1;          // -1 = base
+  std::string link_name;        // a link or "base"
+  int link = -1;                // -1 = base
   std::array<sym::Expr, 3> at;  // in the link's frame; coordinates, constants and pi
   SourceLocation location;
 };
@@ -144,15 +144,15 @@ struct RobotDescription {
   std::string description;
   std::filesystem::path source_path;
   Convention convention = Convention::Modified;
-  std::array<sym::Expr, 3> gravity;         // exact numbers, base frame, m/s^2
-  std::vector<sym::Expr> coordinates;       // symbols, in the order of `coordinates`
+  std::array<sym::Expr, 3> gravity;                  // exact numbers, base frame, m/s^2
+  std::vector<sym::Expr> coordinates;                // symbols, in the order of `coordinates`
   std::vector<SourceLocation> coordinate_locations;  // parallel to coordinates
-  std::vector<Constant> constants;          // in file order
-  std::vector<Link> links;                  // parents before children
-  std::vector<Friction> friction;           // at most one per coordinate, in file order
-  std::vector<Rotor> rotors;                // at most one per coordinate, in file order
-  std::vector<JointLimit> joint_limits;     // at most one per coordinate, in file order
-  std::vector<Parameter> parameters;        // the unknowns, in order of first use in the file
+  std::vector<Constant> constants;                   // in file order
+  std::vector<Link> links;                           // parents before children
+  std::vector<Friction> friction;                    // at most one per coordinate, in file order
+  std::vector<Rotor> rotors;                         // at most one per coordinate, in file order
+  std::vector<JointLimit> joint_limits;              // at most one per coordinate, in file order
+  std::vector<Parameter> parameters;                 // the unknowns, in order of first use in the file
   std::vector<Loop> loops;
   std::vector<BaseParameter> base_parameters;  // in file order
   ConsistencyMode physical_consistency = ConsistencyMode::Error;

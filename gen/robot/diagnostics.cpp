@@ -26,8 +26,7 @@ void DiagnosticSink::error(SourceLocation location, std::string field, std::stri
   add(Severity::Error, location, std::move(field), std::move(message), std::move(suggestion));
 }
 
-void DiagnosticSink::warning(SourceLocation location, std::string field, std::string message,
-                             std::string suggestion) {
+void DiagnosticSink::warning(SourceLocation location, std::string field, std::string message, std::string suggestion) {
   add(Severity::Warning, location, std::move(field), std::move(message), std::move(suggestion));
 }
 
@@ -49,8 +48,8 @@ std::vector<Diagnostic> DiagnosticSink::sorted() const {
     return a.location.column < b.location.column;
   });
   if (truncated_) {
-    result.push_back(Diagnostic{Severity::Error, file_, {}, {},
-                                fmt::format("too many problems; stopped after {}", kMaxDiagnostics), {}});
+    result.push_back(Diagnostic{
+        Severity::Error, file_, {}, {}, fmt::format("too many problems; stopped after {}", kMaxDiagnostics), {}});
   }
   return result;
 }

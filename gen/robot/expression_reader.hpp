@@ -16,9 +16,9 @@ namespace dyncc::robot::detail {
 
 /// Which names an expression may use, and why other known names may not appear.
 struct SymbolScope {
-  std::string description;                        // e.g. "coordinates, constants and pi"
-  std::set<std::string> names;                    // allowed names (also the suggestions)
-  std::map<std::string, std::string> forbidden;   // known name -> what it is ("an inertial parameter")
+  std::string description;                       // e.g. "coordinates, constants and pi"
+  std::set<std::string> names;                   // allowed names (also the suggestions)
+  std::map<std::string, std::string> forbidden;  // known name -> what it is ("an inertial parameter")
 };
 
 /// Longest expression accepted: descriptions are written by hand, so anything longer is a mistake

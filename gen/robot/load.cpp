@@ -14,13 +14,13 @@ namespace dyncc::robot {
 
 namespace {
 
-using detail::Located;
 using detail::LoadState;
+using detail::Located;
 using detail::YamlReader;
 
 const std::vector<std::string> kTopLevelFields = {
-    "name",   "description", "convention", "gravity",    "coordinates", "constants",       "links",
-    "friction", "rotor",     "joint_limits", "parameters", "loops",     "base_parameters", "physical_consistency"};
+    "name",     "description", "convention",   "gravity",    "coordinates", "constants",       "links",
+    "friction", "rotor",       "joint_limits", "parameters", "loops",       "base_parameters", "physical_consistency"};
 
 LoadResult finish(const DiagnosticSink& sink, std::optional<RobotDescription> robot) {
   LoadResult result;
@@ -44,8 +44,9 @@ std::vector<std::string> prescan_parameter_names(const std::map<std::string, Loc
 void read_document(YamlReader& reader, LoadState& state, const YAML::Node& document) {
   const Located root = reader.root(document);
   if (!document.IsDefined() || document.IsNull()) {
-    reader.sink().error({1, 1}, "", "the file is empty; expected a robot description (a map with name, convention, "
-                                    "gravity, coordinates and links)");
+    reader.sink().error({1, 1}, "",
+                        "the file is empty; expected a robot description (a map with name, convention, "
+                        "gravity, coordinates and links)");
     return;
   }
   if (!reader.expect_map(root, "a robot description with name, convention, gravity, coordinates and links")) return;
@@ -97,7 +98,8 @@ LoadResult load_robot_from_string(std::string_view text, const std::string& file
       return finish(sink, std::nullopt);
     } catch (const YAML::Exception& e) {
       // yaml-cpp marks are 0-based; a null mark means "somewhere in the file".
-      const SourceLocation at = e.mark.is_null() ? SourceLocation{1, 1} : SourceLocation{e.mark.line + 1, e.mark.column + 1};
+      const SourceLocation at =
+          e.mark.is_null() ? SourceLocation{1, 1} : SourceLocation{e.mark.line + 1, e.mark.column + 1};
       sink.error(at, "", "invalid YAML: " + e.msg);
       return finish(sink, std::nullopt);
     }
@@ -125,8 +127,9 @@ LoadResult load_robot(const std::filesystem::path& path) {
     return finish(sink, std::nullopt);
   }
   if (size > kMaxFileSize) {
-    sink.error({}, "", "file is " + std::to_string(size) + " bytes; a robot description may be at most " +
-                           std::to_string(kMaxFileSize) + " bytes");
+    sink.error({}, "",
+               "file is " + std::to_string(size) + " bytes; a robot description may be at most " +
+                   std::to_string(kMaxFileSize) + " bytes");
     return finish(sink, std::nullopt);
   }
   std::ifstream in(path, std::ios::binary);

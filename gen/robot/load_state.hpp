@@ -38,14 +38,14 @@ struct NominalValue {
 
 struct LoadState {
   RobotDescription robot;
-  std::vector<ParameterUse> parameter_uses;  // in file order
+  std::vector<ParameterUse> parameter_uses;                          // in file order
   std::unordered_map<std::string, std::size_t> parameter_use_index;  // name -> index in parameter_uses
   std::unordered_map<std::string, int> coordinate_index;             // name -> index in robot.coordinates
   std::unordered_map<std::string, std::size_t> constant_index;       // name -> index in robot.constants
-  std::vector<NominalValue> nominal_values;  // in file order
-  std::vector<std::string> nominal_names;    // keys of `parameters`, read up front for better messages
+  std::vector<NominalValue> nominal_values;                          // in file order
+  std::vector<std::string> nominal_names;     // keys of `parameters`, read up front for better messages
   std::vector<std::string> unreadable_names;  // constants and parameters whose value was bad (already reported)
-  bool links_readable = false;               // `links` was a non-empty list (tree checks make sense)
+  bool links_readable = false;                // `links` was a non-empty list (tree checks make sense)
 
   /// Names allowed in geometry: coordinates, constants (and pi, handled by the parser).
   [[nodiscard]] SymbolScope geometry_scope() const;

@@ -1,9 +1,9 @@
 // Physical consistency of the nominal values: a rigid body has mass >= 0 and an inertia tensor
 // about its centre of mass whose principal moments are >= 0 and obey the triangle inequality
 // (each at most the sum of the other two). Friction coefficients and rotor inertias are >= 0.
-#include <Eigen/Eigenvalues>
 #include <fmt/core.h>
 
+#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
 #include <optional>
@@ -78,14 +78,16 @@ class ConsistencyChecker {
     const SourceLocation at = link.location_of("inertia");
     const std::string field = prefix + ".inertia";
     // Tolerance relative to the tensor's size, so rounding in hand-written values is not flagged.
-    const double scale = std::max({std::abs(*xx), std::abs(*yy), std::abs(*zz), std::abs(*xy), std::abs(*xz),
-                                   std::abs(*yz)});
+    const double scale =
+        std::max({std::abs(*xx), std::abs(*yy), std::abs(*zz), std::abs(*xy), std::abs(*xz), std::abs(*yz)});
     const double tolerance = 1e-9 * scale + 1e-15;
     // The diagonal triangle inequalities first: they give the most readable message.
     const struct {
       double first, second, third;
       const char* text;
-    } triangles[] = {{*xx, *yy, *zz, "xx + yy >= zz"}, {*yy, *zz, *xx, "yy + zz >= xx"}, {*zz, *xx, *yy, "zz + xx >= yy"}};
+    } triangles[] = {{*xx, *yy, *zz, "xx + yy >= zz"},
+                     {*yy, *zz, *xx, "yy + zz >= xx"},
+                     {*zz, *xx, *yy, "zz + xx >= yy"}};
     for (const auto& triangle : triangles) {
       if (triangle.first + triangle.second < triangle.third - tolerance) {
         report(at, field,

@@ -9,7 +9,8 @@ namespace dyncc::robot::detail {
 namespace {
 
 // A scalar that must be one of a few words ("modified" | "standard").
-std::optional<std::string> read_choice(YamlReader& reader, const Located& value, const std::vector<std::string>& choices) {
+std::optional<std::string> read_choice(YamlReader& reader, const Located& value,
+                                       const std::vector<std::string>& choices) {
   auto word = reader.text(value, "one of a fixed set of words");
   if (!word) return std::nullopt;
   for (const std::string& choice : choices) {

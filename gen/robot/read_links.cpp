@@ -8,8 +8,8 @@ namespace dyncc::robot::detail {
 
 namespace {
 
-const std::vector<std::string> kLinkFields = {"name", "parent",  "joint", "a",       "alpha",      "d",
-                                              "theta", "mass", "com",   "inertia", "description"};
+const std::vector<std::string> kLinkFields = {"name",  "parent", "joint", "a",       "alpha",      "d",
+                                              "theta", "mass",   "com",   "inertia", "description"};
 const std::vector<std::string> kInertiaFields = {"xx", "yy", "zz", "xy", "xz", "yz"};
 
 class LinkReader {
@@ -96,8 +96,10 @@ class LinkReader {
   }
 
   void read_inertial(const Located& entry) {
-    if (reader_.require(fields_, entry, "mass", "a number, or the name of an unknown; write 'mass: 0' for a massless frame")) {
-      if (auto mass = record_entry(reader_, state_, fields_.at("mass"), ParameterRole::Mass, index_, -1)) link_.mass = *mass;
+    if (reader_.require(fields_, entry, "mass",
+                        "a number, or the name of an unknown; write 'mass: 0' for a massless frame")) {
+      if (auto mass = record_entry(reader_, state_, fields_.at("mass"), ParameterRole::Mass, index_, -1))
+        link_.mass = *mass;
     }
     if (const auto com = fields_.find("com"); com != fields_.end()) {
       if (auto items = reader_.fixed_sequence(com->second, 3, "x, y, z of the centre of mass in the link frame")) {
@@ -112,7 +114,8 @@ class LinkReader {
     }
     if (const auto inertia = fields_.find("inertia"); inertia != fields_.end()) {
       const Located& map = inertia->second;
-      if (!reader_.expect_map(map, "entries xx, yy, zz, xy, xz, yz of the inertia tensor about the centre of mass")) return;
+      if (!reader_.expect_map(map, "entries xx, yy, zz, xy, xz, yz of the inertia tensor about the centre of mass"))
+        return;
       const auto entries = reader_.fields(map, kInertiaFields);
       sym::Expr* targets[] = {&link_.inertia.xx, &link_.inertia.yy, &link_.inertia.zz,
                               &link_.inertia.xy, &link_.inertia.xz, &link_.inertia.yz};

@@ -39,7 +39,8 @@ void read_rotors(YamlReader& reader, LoadState& state, const Located& value) {
     const auto fields = reader.fields(item, {"inertia", "gear_ratio"});
     Rotor rotor{*coordinate, sym::Expr(), sym::Rational(1), key.location};
     if (reader.require(fields, item, "inertia", "the motor rotor's inertia about its axis, kg m^2")) {
-      if (auto entry = record_entry(reader, state, fields.at("inertia"), ParameterRole::RotorInertia, -1, *coordinate)) {
+      if (auto entry =
+              record_entry(reader, state, fields.at("inertia"), ParameterRole::RotorInertia, -1, *coordinate)) {
         rotor.inertia = *entry;
       }
     }
@@ -111,8 +112,10 @@ std::optional<LoopPoint> read_loop_point(YamlReader& reader, const SymbolScope& 
   point.link_name = *link;
   for (std::size_t i = 0; i < 3; ++i) {
     const auto coordinate = read_expression(reader, (*at)[i], scope);
-    if (!coordinate) ok = false;
-    else point.at[i] = *coordinate;
+    if (!coordinate)
+      ok = false;
+    else
+      point.at[i] = *coordinate;
   }
   if (!ok) return std::nullopt;
   return point;

@@ -52,7 +52,9 @@ void resolve_parents(RobotDescription& robot, DiagnosticSink& sink) {
     const std::optional<int> parent = found == index.end() ? std::nullopt : std::optional<int>(found->second);
     if (!parent) {
       const std::string suggestion = sink.saturated() ? std::string() : closest_match(link.parent_name, candidates);
-      sink.error(at, field, unknown_name_message("parent link", link.parent_name, "expected 'base' or an earlier link", suggestion),
+      sink.error(at, field,
+                 unknown_name_message("parent link", link.parent_name, "expected 'base' or an earlier link",
+                                      suggestion),
                  suggestion);
       continue;
     }
@@ -186,7 +188,8 @@ void resolve_loop_links(RobotDescription& robot, DiagnosticSink& sink) {
       }
       const std::string suggestion = sink.saturated() ? std::string() : closest_match(point.link_name, candidates);
       sink.error(point.location, fmt::format("loops[{}].points[{}].link", l, p),
-                 unknown_name_message("link", point.link_name, "expected a link name or 'base'", suggestion), suggestion);
+                 unknown_name_message("link", point.link_name, "expected a link name or 'base'", suggestion),
+                 suggestion);
     }
   }
 }

@@ -102,7 +102,8 @@ std::vector<Expr> gradient(Expr f, std::span<const Expr> vars) {
     const Expr adj = add(found->second);
     contributions.erase(found);
     if (adj.is_zero()) continue;
-    if (const auto v = var_index.find(e.node()); v != var_index.end()) result[static_cast<std::size_t>(v->second)] = adj;
+    if (const auto v = var_index.find(e.node()); v != var_index.end())
+      result[static_cast<std::size_t>(v->second)] = adj;
     const auto args = e.args();
     auto push = [&](Expr child, Expr partial) {
       if (depends.at(child.node())) contributions[child.node()].push_back(adj * partial);

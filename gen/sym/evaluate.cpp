@@ -25,7 +25,8 @@ CompiledFunction::CompiledFunction(std::span<const Expr> outputs, std::span<cons
         }
         continue;
       }
-      Instruction ins{e.kind(), static_cast<std::uint32_t>(operands_.size()), static_cast<std::uint32_t>(e.args().size()), 0.0};
+      Instruction ins{e.kind(), static_cast<std::uint32_t>(operands_.size()),
+                      static_cast<std::uint32_t>(e.args().size()), 0.0};
       switch (e.kind()) {
         case Kind::Number: ins.value = e.value().to_double(); break;
         case Kind::Constant: ins.value = std::numbers::pi; break;

@@ -34,8 +34,8 @@ class Expr {
  public:
   Expr();  // the number 0
   explicit Expr(const Node* node) : node_(node) {}
-  Expr(int value);            // NOLINT(google-explicit-constructor)
-  Expr(std::int64_t value);   // NOLINT(google-explicit-constructor): numbers read naturally in formulas
+  Expr(int value);              // NOLINT(google-explicit-constructor)
+  Expr(std::int64_t value);     // NOLINT(google-explicit-constructor): numbers read naturally in formulas
   Expr(const Rational& value);  // NOLINT(google-explicit-constructor)
 
   [[nodiscard]] const Node* node() const { return node_; }

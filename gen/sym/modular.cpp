@@ -64,7 +64,8 @@ ModularFunction::ModularFunction(std::span<const Expr> outputs, std::span<const 
         case Kind::Add:
         case Kind::Mul:
           ins.value = e.value();
-          for (std::size_t i = 0; i < e.args().size(); ++i) operands_.push_back({slot_of.at(e.args()[i].node()), e.weights()[i]});
+          for (std::size_t i = 0; i < e.args().size(); ++i)
+            operands_.push_back({slot_of.at(e.args()[i].node()), e.weights()[i]});
           ins.count = static_cast<std::uint32_t>(e.args().size());
           break;
         case Kind::Sin:
@@ -97,7 +98,8 @@ ModularFunction::ModularFunction(std::span<const Expr> outputs, std::span<const 
           }
           if (!offset.is_zero() || !constant_part.empty()) {
             const Expr angle = linear_combination(constant_part, offset);
-            auto [it, inserted] = constant_angles_.try_emplace(angle, static_cast<std::uint32_t>(inputs_ + constant_angles_.size()));
+            auto [it, inserted] =
+                constant_angles_.try_emplace(angle, static_cast<std::uint32_t>(inputs_ + constant_angles_.size()));
             operands_.push_back({it->second, Rational(1)});
           }
           ins.count = static_cast<std::uint32_t>(operands_.size()) - ins.first;
@@ -120,11 +122,14 @@ const ModularFunction::BoundConstants& ModularFunction::bind(const PrimeField& f
   }
   BoundConstants b;
   b.values.reserve(instructions_.size());
-  for (const Instruction& ins : instructions_) b.values.push_back(ins.kind == Kind::Number || ins.kind == Kind::Add || ins.kind == Kind::Mul ? f.from(ins.value) : 0);
+  for (const Instruction& ins : instructions_)
+    b.values.push_back(ins.kind == Kind::Number || ins.kind == Kind::Add || ins.kind == Kind::Mul ? f.from(ins.value)
+                                                                                                  : 0);
   b.coefficients.assign(operands_.size(), 0);
   for (const Instruction& ins : instructions_) {
     if (ins.kind != Kind::Add) continue;
-    for (std::uint32_t i = 0; i < ins.count; ++i) b.coefficients[ins.first + i] = f.from(operands_[ins.first + i].coefficient);
+    for (std::uint32_t i = 0; i < ins.count; ++i)
+      b.coefficients[ins.first + i] = f.from(operands_[ins.first + i].coefficient);
   }
   bound_.emplace_back(f.prime(), std::move(b));
   return bound_.back().second;
@@ -142,7 +147,8 @@ std::vector<std::uint64_t> ModularFunction::evaluate(const PrimeField& f, const 
       case Kind::Number: r = bound.values[k]; break;
       case Kind::Add:
         r = bound.values[k];
-        for (std::uint32_t i = 0; i < ins.count; ++i) r = f.add(r, f.mul(bound.coefficients[ins.first + i], slots[ops[i].slot]));
+        for (std::uint32_t i = 0; i < ins.count; ++i)
+          r = f.add(r, f.mul(bound.coefficients[ins.first + i], slots[ops[i].slot]));
         break;
       case Kind::Mul:
         r = bound.values[k];
@@ -152,7 +158,8 @@ std::vector<std::uint64_t> ModularFunction::evaluate(const PrimeField& f, const 
           if (e == 1) {
             r = f.mul(r, b);
           } else {
-            r = f.mul(r, e >= 0 ? f.pow(b, static_cast<std::uint64_t>(e)) : f.inv(f.pow(b, static_cast<std::uint64_t>(-e))));
+            r = f.mul(r, e >= 0 ? f.pow(b, static_cast<std::uint64_t>(e))
+                                : f.inv(f.pow(b, static_cast<std::uint64_t>(-e))));
           }
         }
         break;

@@ -12,9 +12,9 @@
 #include <cstdint>
 #include <optional>
 #include <random>
-#include <unordered_map>
 #include <span>
 #include <stdexcept>
+#include <unordered_map>
 #include <vector>
 
 #include "sym/expr.hpp"

@@ -6,8 +6,8 @@
 namespace dyncc::sym {
 namespace {
 
-constexpr int kMaxDepth = 200;       // nesting guard: malformed input must not exhaust the stack
-constexpr int kMaxExponent = 64;     // larger powers would make expansion explode
+constexpr int kMaxDepth = 200;    // nesting guard: malformed input must not exhaust the stack
+constexpr int kMaxExponent = 64;  // larger powers would make expansion explode
 constexpr std::size_t kMaxLength = 100000;
 
 struct Failure {
@@ -63,7 +63,8 @@ class Parser {
 
   struct DepthGuard {
     explicit DepthGuard(Parser& p) : parser(p) {
-      if (++parser.depth_ > kMaxDepth) fail(parser.pos_, "expression nested deeper than " + std::to_string(kMaxDepth) + " levels");
+      if (++parser.depth_ > kMaxDepth)
+        fail(parser.pos_, "expression nested deeper than " + std::to_string(kMaxDepth) + " levels");
     }
     ~DepthGuard() { --parser.depth_; }
     DepthGuard(const DepthGuard&) = delete;
@@ -187,7 +188,8 @@ class Parser {
       fail(start, "malformed or out-of-range number '" + std::string(literal) + "'");
     }
     if (pos_ < text_.size() && is_name_start(text_[pos_])) {
-      fail(pos_, "expected an operator after the number, found '" + std::string(1, text_[pos_]) + "' (write 2*x, not 2x)");
+      fail(pos_,
+           "expected an operator after the number, found '" + std::string(1, text_[pos_]) + "' (write 2*x, not 2x)");
     }
     return number(value);
   }

@@ -31,8 +31,8 @@ struct ParseError {
 };
 
 struct ParseResult {
-  std::optional<Expr> expr;       // set on success
-  ParseError error;               // set on failure
+  std::optional<Expr> expr;        // set on success
+  ParseError error;                // set on failure
   std::vector<SymbolUse> symbols;  // every symbol occurrence, in text order (for unknown-name checks)
   [[nodiscard]] bool ok() const { return expr.has_value(); }
 };

@@ -163,14 +163,15 @@ class Printer {
     if (head.empty()) head.assign(1, '1');
     if (den_text.empty()) return head;
     if (style_.latex) return "\\frac{" + head + "}{" + den_text + "}";
-    const bool single = denominator.size() <= 1 && (c.is_one() || denominator.empty()) &&
-                        den_text.find('*') == std::string::npos;
+    const bool single =
+        denominator.size() <= 1 && (c.is_one() || denominator.empty()) && den_text.find('*') == std::string::npos;
     return head + "/" + (single ? den_text : "(" + den_text + ")");
   }
 
   std::pair<std::string, int> render(Expr e) {
     switch (e.kind()) {
-      case Kind::Number: return {number_text(e.value()), e.value().is_negative() || !e.value().is_integer() ? kUnary : kAtom};
+      case Kind::Number:
+        return {number_text(e.value()), e.value().is_negative() || !e.value().is_integer() ? kUnary : kAtom};
       case Kind::Constant:
       case Kind::Symbol: return {name_text(e.name()), kAtom};
       case Kind::Add: {
@@ -181,7 +182,8 @@ class Printer {
           Expr term;
         };
         std::vector<Item> items;
-        for (std::size_t i = 0; i < e.args().size(); ++i) items.push_back({print(e.args()[i]), e.weights()[i], e.args()[i]});
+        for (std::size_t i = 0; i < e.args().size(); ++i)
+          items.push_back({print(e.args()[i]), e.weights()[i], e.args()[i]});
         std::sort(items.begin(), items.end(), [](const Item& l, const Item& r) {
           if (l.coef.is_negative() != r.coef.is_negative()) return !l.coef.is_negative();
           return natural_less(l.key, r.key);

@@ -75,7 +75,8 @@ Rational operator/(const Rational& a, const Rational& b) {
 }
 
 Rational Rational::operator-() const {
-  if (num_ == std::numeric_limits<std::int64_t>::min()) throw RationalOverflow("exact rational coefficient overflows 64 bits");
+  if (num_ == std::numeric_limits<std::int64_t>::min())
+    throw RationalOverflow("exact rational coefficient overflows 64 bits");
   Rational r = *this;
   r.num_ = -num_;
   return r;

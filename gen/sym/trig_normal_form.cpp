@@ -9,7 +9,6 @@
 #include <stdexcept>
 #include <unordered_map>
 
-
 namespace dyncc::sym {
 namespace {
 
@@ -166,8 +165,9 @@ class NormalFormBuilder {
           const std::int64_t d = c.den();
           it->second = Rational(std::lcm(l, d));
           if (!is_polynomial_monomial(atom)) {
-            mark_inexact(atom.kind() == Kind::Constant ? "a trigonometric argument contains a multiple of pi other than k*pi/2"
-                                                      : "a trigonometric argument is not a linear combination of symbols");
+            mark_inexact(atom.kind() == Kind::Constant
+                             ? "a trigonometric argument contains a multiple of pi other than k*pi/2"
+                             : "a trigonometric argument is not a linear combination of symbols");
           }
         }
       }
