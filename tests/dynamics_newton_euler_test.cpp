@@ -179,8 +179,7 @@ std::string random_description(std::mt19937_64& rng, int index, bool arbitrary_a
     const Eigen::Matrix3d R = Eigen::Quaterniond(Eigen::Vector4d::Random().normalized()).toRotationMatrix();
     const Eigen::Matrix3d I = R * principal.asDiagonal() * R.transpose();
     params << "  m" << s << ": " << number(m) << "\n";
-    const char* axes[] = {"x", "y", "z"};
-    for (int c = 0; c < 3; ++c) params << "  " << axes[c] << s << ": " << number(0.4 * u(rng) - 0.2) << "\n";
+    for (const char* axis : {"x", "y", "z"}) params << "  " << axis << s << ": " << number(0.4 * u(rng) - 0.2) << "\n";
     params << "  i" << s << "xx: " << number(I(0, 0)) << "\n  i" << s << "yy: " << number(I(1, 1)) << "\n  i" << s
            << "zz: " << number(I(2, 2)) << "\n  i" << s << "xy: " << number(I(0, 1)) << "\n  i" << s
            << "xz: " << number(I(0, 2)) << "\n  i" << s << "yz: " << number(I(1, 2)) << "\n";

@@ -135,7 +135,10 @@ void print_summary(const RobotDescription& robot) {
              robot.physical_consistency == robot::ConsistencyMode::Error ? "error" : "warn");
 }
 
-int run_check(const std::string& path) {
+}  // namespace
+
+int run_check(const CheckOptions& o) {
+  const std::string& path = o.robot;
   const robot::LoadResult result = robot::load_robot(path);
   for (const robot::Diagnostic& diagnostic : result.diagnostics) fmt::print(stderr, "{}\n", diagnostic.format());
   const std::size_t errors = result.error_count();
@@ -148,15 +151,6 @@ int run_check(const std::string& path) {
   print_summary(*result.robot);
   fmt::print("ok: {} ({} warning{})\n", path, warnings, warnings == 1 ? "" : "s");
   return kSuccess;
-}
-
-}  // namespace
-
-void register_check_command(CLI::App& app, int& exit_code) {
-  CLI::App* check = app.add_subcommand("check", "Load and validate a robot description and print what was understood");
-  auto path = std::make_shared<std::string>();
-  check->add_option("robot", *path, "Robot description (YAML)")->required();
-  check->callback([path, &exit_code] { exit_code = run_check(*path); });
 }
 
 }  // namespace dyncc::cli

@@ -5,8 +5,10 @@
 // identities make exact), each entry in the smaller of its expanded and trigonometric normal
 // forms.
 #include <fmt/core.h>
+#include <fmt/format.h>
 
 #include <string>
+#include <vector>
 
 #include "cli/commands.hpp"
 #include "cli/robot_input.hpp"
@@ -18,14 +20,9 @@
 namespace dyncc::cli {
 namespace {
 
-struct DeriveOptions {
-  std::string robot;
-  bool latex = false;
-};
-
 class Presenter {
  public:
-  Presenter(const pipeline::Derivation& d, bool latex) : d_(d), latex_(latex) {
+  Presenter(const pipeline::Derivation& d, bool latex) : latex_(latex) {
     const sym::Substitution constants = d.robot.constant_values();
     map_ = constants;
     std::vector<bool> kept(d.model.params.list.size(), false);
@@ -89,10 +86,11 @@ class Presenter {
   }
 
  private:
-  const pipeline::Derivation& d_;
   bool latex_;
   sym::Substitution map_;
 };
+
+}  // namespace
 
 int run_derive(const DeriveOptions& o) {
   const auto d = load_and_derive(o.robot);
@@ -129,12 +127,10 @@ int run_derive(const DeriveOptions& o) {
     const int fc = d->model.params.coulomb_of[k];
     const int fv = d->model.params.viscous_of[k];
     const std::string qd = d->model.qd[k].name();
-    std::string text;
-    if (fc >= 0) text += fmt::format("{}*sgn({})", d->model.params.list[static_cast<std::size_t>(fc)].name, qd);
-    if (fv >= 0)
-      text += fmt::format("{}{}*{}", text.empty() ? "" : " + ", d->model.params.list[static_cast<std::size_t>(fv)].name,
-                          qd);
-    if (text.empty()) text = "0";
+    std::vector<std::string> terms;
+    if (fc >= 0) terms.push_back(fmt::format("{}*sgn({})", d->model.params.list[static_cast<std::size_t>(fc)].name, qd));
+    if (fv >= 0) terms.push_back(fmt::format("{}*{}", d->model.params.list[static_cast<std::size_t>(fv)].name, qd));
+    const std::string text = terms.empty() ? std::string("0") : fmt::format("{}", fmt::join(terms, " + "));
     if (o.latex) {
       fmt::print("f_{{{}}} &= \\mathrm{{{}}} \\\\\n", k + 1, text);
     } else {
@@ -179,16 +175,6 @@ int run_derive(const DeriveOptions& o) {
   for (const auto& t : d->timings) fmt::print(" {} {:.1f} ms;", t.stage, t.milliseconds);
   fmt::print(" total {:.1f} ms\n", d->total_milliseconds());
   return kSuccess;
-}
-
-}  // namespace
-
-void register_derive_command(CLI::App& app, int& exit_code) {
-  auto o = std::make_shared<DeriveOptions>();
-  auto* cmd = app.add_subcommand("derive", "Derive H, C, g, friction, the base parameters and Y in readable form");
-  cmd->add_option("ROBOT", o->robot, "Robot description (YAML)")->required();
-  cmd->add_flag("--latex", o->latex, "Print LaTeX (an align* environment)");
-  cmd->callback([&exit_code, o] { exit_code = run_derive(*o); });
 }
 
 }  // namespace dyncc::cli

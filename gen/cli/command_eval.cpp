@@ -14,12 +14,6 @@
 namespace dyncc::cli {
 namespace {
 
-struct EvalOptions {
-  std::string robot;
-  std::vector<double> q, qd, v, a;
-  bool json = false;
-};
-
 nlohmann::json to_json(const Eigen::MatrixXd& m) {
   nlohmann::json rows = nlohmann::json::array();
   for (Eigen::Index i = 0; i < m.rows(); ++i) {
@@ -59,6 +53,8 @@ bool take(const std::vector<double>& given, std::size_t n, Eigen::VectorXd& out,
   out = Eigen::Map<const Eigen::VectorXd>(given.data(), static_cast<Eigen::Index>(n));
   return true;
 }
+
+}  // namespace
 
 int run_eval(const EvalOptions& o) {
   const auto d = load_and_derive(o.robot);
@@ -122,22 +118,6 @@ int run_eval(const EvalOptions& o) {
                sym::to_string(d->base.list[b].definition));
   }
   return kSuccess;
-}
-
-}  // namespace
-
-void register_eval_command(CLI::App& app, int& exit_code) {
-  auto o = std::make_shared<EvalOptions>();
-  auto* cmd =
-      app.add_subcommand("eval",
-                         "Evaluate H, C, g, friction, tau, Y and the base parameters at a state (nominal parameters)");
-  cmd->add_option("ROBOT", o->robot, "Robot description (YAML)")->required();
-  cmd->add_option("--q", o->q, "Coordinates, comma-separated")->delimiter(',');
-  cmd->add_option("--qd", o->qd, "Coordinate rates (default 0)")->delimiter(',');
-  cmd->add_option("--v", o->v, "Reference velocity qd_r (default qd)")->delimiter(',');
-  cmd->add_option("--a", o->a, "Reference acceleration qdd_r (default 0)")->delimiter(',');
-  cmd->add_flag("--json", o->json, "Machine-readable output");
-  cmd->callback([&exit_code, o] { exit_code = run_eval(*o); });
 }
 
 }  // namespace dyncc::cli

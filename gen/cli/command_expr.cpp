@@ -29,16 +29,11 @@ std::optional<sym::Expr> parse_argument(const std::string& text, const std::stri
   return std::nullopt;
 }
 
-struct ExprOptions {
-  std::string variable;
-  std::string expression;
-  std::vector<std::string> assignments;
-  bool latex = false;
-};
-
 std::string show(sym::Expr e, bool latex) { return latex ? sym::to_latex(e) : sym::to_string(e); }
 
-int run_diff(const ExprOptions& o) {
+}  // namespace
+
+int run_expr_diff(const ExprOptions& o) {
   const auto e = parse_argument(o.expression, "EXPR");
   if (!e) return kBadInput;
   const sym::ParseResult v = sym::parse(o.variable);
@@ -50,21 +45,21 @@ int run_diff(const ExprOptions& o) {
   return kSuccess;
 }
 
-int run_simplify(const ExprOptions& o) {
+int run_expr_simplify(const ExprOptions& o) {
   const auto e = parse_argument(o.expression, "EXPR");
   if (!e) return kBadInput;
   fmt::print("{}\n", show(sym::simplify(*e), o.latex));
   return kSuccess;
 }
 
-int run_expand(const ExprOptions& o) {
+int run_expr_expand(const ExprOptions& o) {
   const auto e = parse_argument(o.expression, "EXPR");
   if (!e) return kBadInput;
   fmt::print("{}\n", show(sym::expand(*e), o.latex));
   return kSuccess;
 }
 
-int run_zero(const ExprOptions& o) {
+int run_expr_zero(const ExprOptions& o) {
   const auto e = parse_argument(o.expression, "EXPR");
   if (!e) return kBadInput;
   const sym::ZeroTestResult r = sym::test_zero(*e);
@@ -87,7 +82,7 @@ int run_zero(const ExprOptions& o) {
   return kCheckFailed;
 }
 
-int run_eval(const ExprOptions& o) {
+int run_expr_eval(const ExprOptions& o) {
   const auto e = parse_argument(o.expression, "EXPR");
   if (!e) return kBadInput;
   std::unordered_map<std::string, double> values;
@@ -119,44 +114,6 @@ int run_eval(const ExprOptions& o) {
   }
   fmt::print("{:.17g}\n", sym::evaluate(*e, values));
   return kSuccess;
-}
-
-}  // namespace
-
-void register_expr_command(CLI::App& app, int& exit_code) {
-  auto* expr = app.add_subcommand("expr", "Differentiate, simplify, zero-test and evaluate expressions");
-  expr->require_subcommand(1);
-  auto options = std::make_shared<ExprOptions>();
-  auto with_latex = [&](CLI::App* sub) {
-    sub->add_flag("--latex", options->latex, "Print LaTeX instead of plain text");
-  };
-
-  auto* diff = expr->add_subcommand("diff", "Derivative of EXPR with respect to VAR");
-  diff->add_option("VAR", options->variable, "Variable")->required();
-  diff->add_option("EXPR", options->expression, "Expression")->required();
-  with_latex(diff);
-  diff->callback([&exit_code, options] { exit_code = run_diff(*options); });
-
-  auto* simplify =
-      expr->add_subcommand("simplify", "Smallest equivalent form (canonical, expanded or trigonometric normal form)");
-  simplify->add_option("EXPR", options->expression, "Expression")->required();
-  with_latex(simplify);
-  simplify->callback([&exit_code, options] { exit_code = run_simplify(*options); });
-
-  auto* expand = expr->add_subcommand("expand", "Multiply out products and powers of sums");
-  expand->add_option("EXPR", options->expression, "Expression")->required();
-  with_latex(expand);
-  expand->callback([&exit_code, options] { exit_code = run_expand(*options); });
-
-  auto* zero =
-      expr->add_subcommand("zero", "Decide whether EXPR is identically zero (exit 0) or not (exit 1, with a witness)");
-  zero->add_option("EXPR", options->expression, "Expression")->required();
-  zero->callback([&exit_code, options] { exit_code = run_zero(*options); });
-
-  auto* eval = expr->add_subcommand("eval", "Evaluate EXPR at VAR=VALUE ...");
-  eval->add_option("EXPR", options->expression, "Expression")->required();
-  eval->add_option("ASSIGNMENTS", options->assignments, "VAR=VALUE pairs");
-  eval->callback([&exit_code, options] { exit_code = run_eval(*options); });
 }
 
 }  // namespace dyncc::cli

@@ -16,12 +16,6 @@
 namespace dyncc::cli {
 namespace {
 
-struct VerifyOptions {
-  std::string robot;
-  bool json = false;
-  int samples = 1000;
-};
-
 struct CheckResult {
   std::string name;
   bool passed = false;
@@ -93,6 +87,8 @@ double energy_drift(const pipeline::Derivation& d, const Eigen::VectorXd& standa
   }
   return worst / std::max(kinetic0, 1e-12);
 }
+
+}  // namespace
 
 int run_verify(const VerifyOptions& o) {
   const auto start = std::chrono::steady_clock::now();
@@ -192,18 +188,6 @@ int run_verify(const VerifyOptions& o) {
     fmt::print("{} in {:.2f} s\n", all ? "all checks passed" : "SOME CHECKS FAILED", seconds);
   }
   return all ? kSuccess : kCheckFailed;
-}
-
-}  // namespace
-
-void register_verify_command(CLI::App& app, int& exit_code) {
-  auto o = std::make_shared<VerifyOptions>();
-  auto* cmd =
-      app.add_subcommand("verify", "Prove Hdot-2C skew-symmetric and check H, Y, energy and loops at random states");
-  cmd->add_option("ROBOT", o->robot, "Robot description (YAML)")->required();
-  cmd->add_option("--samples", o->samples, "Random states for the numeric checks")->check(CLI::Range(1, 10000000));
-  cmd->add_flag("--json", o->json, "Machine-readable output");
-  cmd->callback([&exit_code, o] { exit_code = run_verify(*o); });
 }
 
 }  // namespace dyncc::cli

@@ -1,17 +1,50 @@
-// Each dyncc subcommand registers itself on the CLI11 app; main() only wires them up.
+// The dyncc subcommands: each takes its parsed options and returns an exit code. Only main.cpp
+// knows the command-line library (CLI11 is heavy to compile; one translation unit pays for it).
 #pragma once
 
-#include <CLI/CLI.hpp>
+#include <string>
+#include <vector>
 
 namespace dyncc::cli {
 
 /// Exit codes shared by every subcommand.
 enum ExitCode : int { kSuccess = 0, kCheckFailed = 1, kBadInput = 2 };
 
-void register_expr_command(CLI::App& app, int& exit_code);
-void register_check_command(CLI::App& app, int& exit_code);
-void register_eval_command(CLI::App& app, int& exit_code);
-void register_derive_command(CLI::App& app, int& exit_code);
-void register_verify_command(CLI::App& app, int& exit_code);
+struct CheckOptions {
+  std::string robot;
+};
+int run_check(const CheckOptions& o);
+
+struct DeriveOptions {
+  std::string robot;
+  bool latex = false;
+};
+int run_derive(const DeriveOptions& o);
+
+struct EvalOptions {
+  std::string robot;
+  std::vector<double> q, qd, v, a;
+  bool json = false;
+};
+int run_eval(const EvalOptions& o);
+
+struct VerifyOptions {
+  std::string robot;
+  bool json = false;
+  int samples = 1000;
+};
+int run_verify(const VerifyOptions& o);
+
+struct ExprOptions {
+  std::string variable;
+  std::string expression;
+  std::vector<std::string> assignments;
+  bool latex = false;
+};
+int run_expr_diff(const ExprOptions& o);
+int run_expr_simplify(const ExprOptions& o);
+int run_expr_expand(const ExprOptions& o);
+int run_expr_zero(const ExprOptions& o);
+int run_expr_eval(const ExprOptions& o);
 
 }  // namespace dyncc::cli

@@ -1,30 +1,109 @@
 // dyncc: robot description -> verified dynamics -> generated controller code.
-#include <fmt/core.h>
-
+// The command line is declared here, in one place; the commands live in command_*.cpp.
 #include <CLI/CLI.hpp>
+#include <cstdio>
 #include <exception>
+#include <memory>
+#include <string>
 
 #include "cli/commands.hpp"
 
-int main(int argc, char** argv) {
+namespace {
+
+using namespace dyncc::cli;
+
+// Options live in shared_ptrs owned by the callbacks, so they outlive this function's frame.
+void add_expr_commands(CLI::App& app, int& exit_code) {
+  auto* expr = app.add_subcommand("expr", "Differentiate, simplify, zero-test and evaluate expressions");
+  expr->require_subcommand(1);
+  auto o = std::make_shared<ExprOptions>();
+  auto add = [&](const char* name, const char* help, int (*run)(const ExprOptions&)) {
+    auto* sub = expr->add_subcommand(name, help);
+    sub->callback([&exit_code, o, run] { exit_code = run(*o); });
+    return sub;
+  };
+  auto* diff = add("diff", "Derivative of EXPR with respect to VAR", run_expr_diff);
+  diff->add_option("VAR", o->variable, "Variable")->required();
+  diff->add_option("EXPR", o->expression, "Expression")->required();
+  diff->add_flag("--latex", o->latex, "Print LaTeX instead of plain text");
+  auto* simplify =
+      add("simplify", "Smallest equivalent form (canonical, expanded or trigonometric normal form)", run_expr_simplify);
+  simplify->add_option("EXPR", o->expression, "Expression")->required();
+  simplify->add_flag("--latex", o->latex, "Print LaTeX instead of plain text");
+  auto* expand = add("expand", "Multiply out products and powers of sums", run_expr_expand);
+  expand->add_option("EXPR", o->expression, "Expression")->required();
+  expand->add_flag("--latex", o->latex, "Print LaTeX instead of plain text");
+  auto* zero = add("zero", "Decide whether EXPR is identically zero (exit 0) or not (exit 1, with a witness)",
+                   run_expr_zero);
+  zero->add_option("EXPR", o->expression, "Expression")->required();
+  auto* eval = add("eval", "Evaluate EXPR at VAR=VALUE ...", run_expr_eval);
+  eval->add_option("EXPR", o->expression, "Expression")->required();
+  eval->add_option("ASSIGNMENTS", o->assignments, "VAR=VALUE pairs");
+}
+
+void add_robot_commands(CLI::App& app, int& exit_code) {
+  auto check = std::make_shared<CheckOptions>();
+  auto* check_cmd =
+      app.add_subcommand("check", "Load and validate a robot description and print what was understood");
+  check_cmd->add_option("robot", check->robot, "Robot description (YAML)")->required();
+  check_cmd->callback([&exit_code, check] { exit_code = run_check(*check); });
+
+  auto derive = std::make_shared<DeriveOptions>();
+  auto* derive_cmd =
+      app.add_subcommand("derive", "Derive H, C, g, friction, the base parameters and Y in readable form");
+  derive_cmd->add_option("ROBOT", derive->robot, "Robot description (YAML)")->required();
+  derive_cmd->add_flag("--latex", derive->latex, "Print LaTeX (an align* environment)");
+  derive_cmd->callback([&exit_code, derive] { exit_code = run_derive(*derive); });
+
+  auto eval = std::make_shared<EvalOptions>();
+  auto* eval_cmd = app.add_subcommand(
+      "eval", "Evaluate H, C, g, friction, tau, Y and the base parameters at a state (nominal parameters)");
+  eval_cmd->add_option("ROBOT", eval->robot, "Robot description (YAML)")->required();
+  eval_cmd->add_option("--q", eval->q, "Coordinates, comma-separated")->delimiter(',');
+  eval_cmd->add_option("--qd", eval->qd, "Coordinate rates (default 0)")->delimiter(',');
+  eval_cmd->add_option("--v", eval->v, "Reference velocity qd_r (default qd)")->delimiter(',');
+  eval_cmd->add_option("--a", eval->a, "Reference acceleration qdd_r (default 0)")->delimiter(',');
+  eval_cmd->add_flag("--json", eval->json, "Machine-readable output");
+  eval_cmd->callback([&exit_code, eval] { exit_code = run_eval(*eval); });
+
+  auto verify = std::make_shared<VerifyOptions>();
+  auto* verify_cmd =
+      app.add_subcommand("verify", "Prove Hdot-2C skew-symmetric and check H, Y, energy and loops at random states");
+  verify_cmd->add_option("ROBOT", verify->robot, "Robot description (YAML)")->required();
+  verify_cmd->add_option("--samples", verify->samples, "Random states for the numeric checks")
+      ->check(CLI::Range(1, 10000000));
+  verify_cmd->add_flag("--json", verify->json, "Machine-readable output");
+  verify_cmd->callback([&exit_code, verify] { exit_code = run_verify(*verify); });
+}
+
+int run(int argc, char** argv) {
   CLI::App app{"dyncc: derives verified rigid-body dynamics from a robot description and emits controller code"};
   app.set_version_flag("--version", std::string("dyncc ") + DYNCC_VERSION);
   app.require_subcommand(1);
-  int exit_code = dyncc::cli::kSuccess;
-  dyncc::cli::register_expr_command(app, exit_code);
-  dyncc::cli::register_check_command(app, exit_code);
-  dyncc::cli::register_derive_command(app, exit_code);
-  dyncc::cli::register_eval_command(app, exit_code);
-  dyncc::cli::register_verify_command(app, exit_code);
+  int exit_code = kSuccess;
+  add_expr_commands(app, exit_code);
+  add_robot_commands(app, exit_code);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     const int code = app.exit(e);
     // CLI11 returns 0 for --help/--version; every real usage error is our "bad input".
-    return code == 0 ? 0 : dyncc::cli::kBadInput;
-  } catch (const std::exception& e) {
-    fmt::print(stderr, "dyncc: internal error: {}\n", e.what());
-    return dyncc::cli::kBadInput;
+    return code == 0 ? 0 : kBadInput;
   }
   return exit_code;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  // Commands report bad input themselves (exit 2); anything escaping to here is a bug in dyncc,
+  // reported as such rather than as std::terminate's abort. C stdio here: it cannot throw.
+  try {
+    return run(argc, argv);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "dyncc: internal error: %s\n", e.what());
+  } catch (...) {
+    std::fprintf(stderr, "dyncc: internal error\n");
+  }
+  return kBadInput;
 }

@@ -1,6 +1,8 @@
 #include "sym/diff.hpp"
 
+#include <ranges>
 #include <stdexcept>
+#include <unordered_map>
 #include <vector>
 
 namespace dyncc::sym {
@@ -95,8 +97,7 @@ std::vector<Expr> gradient(Expr f, std::span<const Expr> vars) {
   std::unordered_map<const Node*, std::vector<Expr>> contributions;
   contributions[f.node()].push_back(Expr(1));
   std::vector<Expr> result(vars.size(), Expr(0));
-  for (auto it = order.rbegin(); it != order.rend(); ++it) {
-    const Expr e = *it;
+  for (const Expr e : std::views::reverse(order)) {
     const auto found = contributions.find(e.node());
     if (found == contributions.end()) continue;
     const Expr adj = add(found->second);

@@ -61,19 +61,20 @@ class ModularFunction {
  public:
   ModularFunction(std::span<const Expr> outputs, std::span<const Expr> inputs);
   /// Throws std::domain_error when a division by zero occurs at this point (pick another).
-  [[nodiscard]] std::vector<std::uint64_t> evaluate(const PrimeField& field, const ModularPoint& point) const;
+  [[nodiscard]] std::vector<std::uint64_t> evaluate(const PrimeField& f, const ModularPoint& pt) const;
   [[nodiscard]] std::size_t input_count() const { return inputs_; }
   /// Points on the unit circle a ModularPoint needs: one per input and per constant angle.
   [[nodiscard]] std::size_t circle_count() const { return inputs_ + constant_angles_.size(); }
 
  private:
   struct Instruction {
-    Kind kind;
-    std::uint32_t first, count;
+    Kind kind{};
+    std::uint32_t first = 0;
+    std::uint32_t count = 0;
     Rational value;
   };
   struct Operand {
-    std::uint32_t slot;    // input or instruction slot; for sin/cos: the symbol's input index
+    std::uint32_t slot = 0;  // input or instruction slot; for sin/cos: the symbol's input index
     Rational coefficient;  // Add coefficient | Mul exponent | sin/cos integer multiple
   };
   // Field images of the exact constants, per prime, converted on first use: a conversion

@@ -4,7 +4,8 @@
 
 namespace dyncc::sym {
 
-Expr rebuild(Expr e, std::span<const Expr> a) {
+Expr rebuild(Expr e, std::span<const Expr> new_args) {
+  const std::span<const Expr> a = new_args;  // short name for the cases below
   switch (e.kind()) {
     case Kind::Add: {
       std::vector<std::pair<Rational, Expr>> terms;
