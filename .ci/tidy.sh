@@ -7,11 +7,13 @@
 #                  `release` preset when missing)
 #   -j N           parallel clang-tidy processes (default 2)
 #   --fix          apply the fix-its clang-tidy offers (review the diff!)
+#   --all          also tests/ and bench/
 #   FILE_REGEX     only files whose path matches one of these (e.g. gen/sym/)
 # Environment: CLANG_TIDY (binary, default clang-tidy-14 or clang-tidy).
 #
-# Scope: gen/, runtime/, tests/, bench/ sources as listed in compile_commands.json (so only what
-# is actually built), never fuzz/ (built by clang with other flags) or third-party code.
+# Scope: the shipped code, gen/ and runtime/ sources as listed in compile_commands.json (so only
+# what is actually built); with --all also tests/ and bench/ (about twice the time: GoogleTest and
+# Eigen make every test file a large translation unit). Never fuzz/ or third-party code.
 # Output: the findings, then a count per check, then a count per file. The full log is kept in
 # BUILD_DIR/clang-tidy.log. Exit status: 0 clean, 1 findings, 2 usage/setup error.
 set -euo pipefail
@@ -19,6 +21,7 @@ set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 build="$root/build/release"
 jobs=2
+scope='gen|runtime'
 fix=()
 filters=()
 while (($#)); do
@@ -26,6 +29,7 @@ while (($#)); do
     -p) build=$(cd "$2" && pwd); shift 2 ;;
     -j) jobs=$2; shift 2 ;;
     --fix) fix=(-fix); shift ;;
+    --all) scope='gen|runtime|tests|bench'; shift ;;
     -h|--help) awk 'NR > 1 && /^#/ { sub(/^# ?/, ""); print; next } NR > 1 { exit }' "$0"; exit 0 ;;
     -*) echo "tidy.sh: unknown option $1" >&2; exit 2 ;;
     *) filters+=("$1"); shift ;;
@@ -46,10 +50,10 @@ if [[ ! -f $build/compile_commands.json ]]; then
 fi
 
 # The project's own translation units, in a stable order.
-mapfile -t files < <(python3 - "$build/compile_commands.json" "$root" "${filters[@]}" <<'EOF'
+mapfile -t files < <(python3 - "$build/compile_commands.json" "$root" "$scope" "${filters[@]}" <<'EOF'
 import json, os, re, sys
-db, root, filters = sys.argv[1], sys.argv[2], sys.argv[3:]
-own = re.compile(r'^(gen|runtime|tests|bench)/.*\.(cc|cpp|cxx)$')
+db, root, scope, filters = sys.argv[1], sys.argv[2], sys.argv[3], sys.argv[4:]
+own = re.compile(r'^(' + scope + r')/.*\.(cc|cpp|cxx)$')
 seen = set()
 for entry in json.load(open(db)):
     path = os.path.normpath(os.path.join(entry.get('directory', ''), entry['file']))

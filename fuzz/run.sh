@@ -5,7 +5,7 @@
 # Usage: fuzz/run.sh [--seconds N] [--jobs N] [--no-build] [--crashes] [TARGET...]
 #   --seconds N  fuzzing time per target (default $FUZZ_SECONDS or 60)
 #   --jobs N     build parallelism (default 2)
-#   --no-build   use the existing build/fuzz binaries
+#   --no-build   use the existing build/asan/fuzz binaries
 #   --crashes    instead of fuzzing, replay the reproducers in fuzz/crashes/ and fail if any
 #                still crashes (for whoever fixes them)
 #   TARGET       fuzz_expression and/or fuzz_robot_yaml (default: both)
@@ -14,8 +14,8 @@
 # see fuzz/README.md.
 #
 # The seeds in fuzz/corpus/<name>/ (and robots/*.yaml for the YAML target) are read-only inputs;
-# what the fuzzer discovers goes to build/fuzz/corpus/<target>/ and is reused by the next run.
-# A failing input is written to build/fuzz/artifacts/ and the command to reproduce it printed.
+# what the fuzzer discovers goes to build/asan/fuzz/corpus/<target>/ and is reused by the next run.
+# A failing input is written to build/asan/fuzz/artifacts/ and the command to reproduce it printed.
 set -euo pipefail
 
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
@@ -37,9 +37,9 @@ while (($#)); do
 done
 ((${#targets[@]})) || targets=(fuzz_expression fuzz_robot_yaml)
 
-bin="$root/build/fuzz/fuzz"
+bin="$root/build/asan/fuzz"
 if ((build)); then
-  (cd "$root" && cmake --preset fuzz >/dev/null && cmake --build build/fuzz -j "$jobs" --target "${targets[@]}")
+  (cd "$root" && cmake --preset asan >/dev/null && cmake --build build/asan -j "$jobs" --target "${targets[@]}")
 fi
 
 # Per target: seed directories, dictionary, crash-file prefix, extra options.
@@ -79,7 +79,7 @@ if ((replay)); then
       if "$bin/$t" -runs=1 -timeout=5 -rss_limit_mb=2048 "$f" >/dev/null 2>&1; then
         echo "fixed:       $t ${f#"$root"/}"
       else
-        echo "still fails: $t ${f#"$root"/}   (run: build/fuzz/fuzz/$t ${f#"$root"/})"
+        echo "still fails: $t ${f#"$root"/}   (run: build/asan/fuzz/$t ${f#"$root"/})"
         failed+=("$t:${f#"$root"/}")
       fi
     done
@@ -89,13 +89,16 @@ if ((replay)); then
 fi
 
 for t in "${targets[@]}"; do
-  corpus="$root/build/fuzz/corpus/$t"
-  artifacts="$root/build/fuzz/artifacts"
+  corpus="$root/build/asan/fuzz/corpus/$t"
+  artifacts="$root/build/asan/fuzz/artifacts"
   mkdir -p "$corpus" "$artifacts"
-  log="$root/build/fuzz/$t.log"
+  log="$root/build/asan/fuzz/$t.log"
   seeds=()
   for d in $(seeds_of "$t"); do [[ -d $d ]] && seeds+=("$d"); done
   read -ra options <<<"$(options_of "$t")"
+  # Interned expression nodes are never freed, so one process grows ~5 MB/s at full speed; long
+  # runs use a worker process that libFuzzer restarts (stops at the first failure all the same).
+  ((seconds > 300)) && options+=(-fork=1)
   status=0
   "$bin/$t" -max_total_time="$seconds" -timeout=5 -rss_limit_mb=2048 -print_final_stats=1 \
     -dict="$(dict_of "$t")" "${options[@]}" -artifact_prefix="$artifacts/$t-" \

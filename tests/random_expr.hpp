@@ -19,6 +19,7 @@
 #include <memory>
 #include <random>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "sym/evaluate.hpp"
@@ -165,25 +166,62 @@ class Generator {
   Sample leaf() { return chance(0.75) ? var(symbol_index()) : rational(); }
 
   /// A general expression of the given depth (all operations of GeneratorOptions).
+  // Every draw is sequenced (braced initialisers, separate statements): in `f() + g()` the order
+  // is unspecified, and g++ and clang differ, so a failing seed did not reproduce across compilers.
   Sample expression(int depth) {
     if (depth <= 0) return leaf();
     const int d = depth - 1;
     switch (uniform(0, 13)) {
       case 0:
-      case 1: return expression(d) + expression(d);
-      case 2: return expression(d) - expression(d);
+      case 1: {
+        const auto [l, r] = std::tuple{expression(d), expression(d)};
+        return l + r;
+      }
+      case 2: {
+        const auto [l, r] = std::tuple{expression(d), expression(d)};
+        return l - r;
+      }
       case 3:
-      case 4: return expression(d) * expression(d);
-      case 5: return options_.division ? expression(d) / positive(d) : expression(d) * leaf();
-      case 6: return pow(expression(d), uniform(2, options_.max_exponent));
-      case 7: return options_.division ? pow(positive(d), -uniform(1, 2)) : -expression(d);
+      case 4: {
+        const auto [l, r] = std::tuple{expression(d), expression(d)};
+        return l * r;
+      }
+      case 5: {
+        const Sample l = expression(d);
+        return options_.division ? l / positive(d) : l * leaf();
+      }
+      case 6: {
+        const Sample base = expression(d);
+        return pow(base, uniform(2, options_.max_exponent));
+      }
+      case 7: {
+        if (!options_.division) return -expression(d);
+        const Sample base = positive(d);
+        return pow(base, -uniform(1, 2));
+      }
       case 8: return sin(expression(d));
       case 9: return cos(expression(d));
-      case 10: return options_.sqrt ? sqrt(positive(d)) : sin(expression(d)) * leaf();
-      case 11:
-        if (!options_.atan2) return cos(expression(d)) + leaf();
-        return chance(0.5) ? atan2(expression(d), positive(d)) : atan2(positive(d), expression(d));
-      case 12: return rational() * expression(d);
+      case 10: {
+        if (options_.sqrt) return sqrt(positive(d));
+        const Sample l = sin(expression(d));
+        return l * leaf();
+      }
+      case 11: {
+        if (!options_.atan2) {
+          const Sample l = cos(expression(d));
+          return l + leaf();
+        }
+        if (chance(0.5)) {
+          const auto [y, x] = std::tuple{expression(d), positive(d)};
+          return atan2(y, x);
+        }
+        const auto [y, x] = std::tuple{positive(d), expression(d)};
+        return atan2(y, x);
+      }
+      case 12: {
+        const Sample c = rational();
+        return c * expression(d);
+      }
       default: return -expression(d);
     }
   }
@@ -193,15 +231,25 @@ class Generator {
   Sample positive(int depth) {
     const int d = depth > 0 ? depth - 1 : 0;
     switch (uniform(0, 6)) {
-      case 0: return num(Rational(uniform(1, 7), uniform(1, 2)));
+      case 0: {
+        const auto [n, m] = std::tuple{uniform(1, 7), uniform(1, 2)};
+        return num(Rational(n, m));
+      }
       case 1: return num(Rational(1)) + pow(expression(d), 2);
       case 2: return num(Rational(2)) + sin(expression(d));
       case 3: return num(Rational(2)) - cos(expression(d));
       case 4:
         return options_.sqrt ? sqrt(num(Rational(1)) + pow(expression(d), 2))
                              : num(Rational(3, 2)) + cos(expression(d));
-      case 5: return num(Rational(1, 2)) + pow(expression(d), 2) + pow(expression(d), 4);
-      default: return depth > 0 ? positive(d) * positive(d) : num(Rational(5, 4));
+      case 5: {
+        const auto [l, r] = std::tuple{expression(d), expression(d)};
+        return num(Rational(1, 2)) + pow(l, 2) + pow(r, 4);
+      }
+      default: {
+        if (depth <= 0) return num(Rational(5, 4));
+        const auto [l, r] = std::tuple{positive(d), positive(d)};
+        return l * r;
+      }
     }
   }
 
@@ -210,13 +258,28 @@ class Generator {
   /// of angles in a product, so arguments stay short to keep the tests fast.)
   Sample linear_angle() {
     if (options_.integer_angles) {
-      Sample a = num(Rational(uniform(1, 3))) * var(symbol_index());
-      if (chance(0.5)) a = a + num(Rational(chance(0.5) ? -1 : 2)) * var(symbol_index());
+      const int k = uniform(1, 3);
+      Sample a = num(Rational(k)) * var(symbol_index());
+      if (chance(0.5)) {
+        const int j = chance(0.5) ? -1 : 2;
+        a = a + num(Rational(j)) * var(symbol_index());
+      }
       return a;
     }
-    Sample a = rational_small() * var(symbol_index());
-    if (chance(0.5)) a = chance(0.5) ? a + rational_small() * var(symbol_index()) : a - var(symbol_index());
-    if (chance(0.2)) a = a + num(Rational(uniform(1, 3), uniform(1, 2)));
+    const Sample c = rational_small();
+    Sample a = c * var(symbol_index());
+    if (chance(0.5)) {
+      if (chance(0.5)) {
+        const Sample c2 = rational_small();
+        a = a + c2 * var(symbol_index());
+      } else {
+        a = a - var(symbol_index());
+      }
+    }
+    if (chance(0.2)) {
+      const auto [n, m] = std::tuple{uniform(1, 3), uniform(1, 2)};
+      a = a + num(Rational(n, m));
+    }
     return a;
   }
 
@@ -233,13 +296,28 @@ class Generator {
     const int d = depth - 1;
     switch (uniform(0, 7)) {
       case 0:
-      case 1: return trig_polynomial(d) + trig_polynomial(d);
-      case 2: return trig_polynomial(d) - trig_polynomial(d);
+      case 1: {
+        const auto [l, r] = std::tuple{trig_polynomial(d), trig_polynomial(d)};
+        return l + r;
+      }
+      case 2: {
+        const auto [l, r] = std::tuple{trig_polynomial(d), trig_polynomial(d)};
+        return l - r;
+      }
       case 3:
-      case 4: return trig_polynomial(d) * trig_polynomial(d);
+      case 4: {
+        const auto [l, r] = std::tuple{trig_polynomial(d), trig_polynomial(d)};
+        return l * r;
+      }
       case 5: return pow(trig_polynomial(d), 2);
-      case 6: return rational() * trig_polynomial(d);
-      default: return sin(linear_angle()) * trig_polynomial(d);
+      case 6: {
+        const Sample c = rational();
+        return c * trig_polynomial(d);
+      }
+      default: {
+        const Sample l = sin(linear_angle());
+        return l * trig_polynomial(d);
+      }
     }
   }
 
@@ -295,9 +373,30 @@ class Rewriter {
     switch (s->op) {
       case Op::Num:
       case Op::Var: return plain(s);
-      case Op::Add: return coin() ? run(s->b) + run(s->a) : run(s->a) - (-run(s->b));
-      case Op::Sub: return coin() ? -(run(s->b) - run(s->a)) : run(s->a) + Expr(-1) * run(s->b);
-      case Op::Mul: return coin() ? run(s->b) * run(s->a) : -((-run(s->a)) * run(s->b));
+      case Op::Add: {
+        if (coin()) {
+          const auto [b, a] = std::tuple{run(s->b), run(s->a)};
+          return b + a;
+        }
+        const auto [a, b] = std::tuple{run(s->a), run(s->b)};
+        return a - (-b);
+      }
+      case Op::Sub: {
+        if (coin()) {
+          const auto [b, a] = std::tuple{run(s->b), run(s->a)};
+          return -(b - a);
+        }
+        const auto [a, b] = std::tuple{run(s->a), run(s->b)};
+        return a + Expr(-1) * b;
+      }
+      case Op::Mul: {
+        if (coin()) {
+          const auto [b, a] = std::tuple{run(s->b), run(s->a)};
+          return b * a;
+        }
+        const auto [a, b] = std::tuple{run(s->a), run(s->b)};
+        return -((-a) * b);
+      }
       case Op::Div: return run(s->a) * sym::pow(plain(s->b), -1);
       case Op::Neg: return Expr(-1) * run(s->a);
       case Op::Pow: return power(s);

@@ -309,5 +309,30 @@ TEST(SymCanonical, DagSizeCountsSharedNodesOnce) {
   EXPECT_GT(e.dag_size(), 40U);
 }
 
+// sqrt(u)^k * u^m with k, m of opposite signs has one node whatever the construction order
+// (found by a clang build, whose random expressions differ: (a/d)*d != a for a = 1/sqrt(u)).
+TEST(SymCanonical, SqrtTimesAPowerOfItsArgumentIsOneNode) {
+  const Expr x = symbol("x");
+  for (const Expr u : {x, pow(x, 2) + Expr(1), Expr(2) * x + Expr(2)}) {
+    SCOPED_TRACE(to_string(u));
+    const Expr r = sqrt(u);
+    EXPECT_SAME(r / u, Expr(1) / r);
+    EXPECT_SAME(u / r, r);
+    EXPECT_SAME((Expr(1) / r / r) * r, Expr(1) / r);
+    EXPECT_SAME(pow(r, 3) / pow(u, 2), Expr(1) / r);
+    EXPECT_SAME(pow(r, 5) / u, u * r);
+    EXPECT_SAME(parse_or_throw(to_string(r / u)), r / u);
+  }
+}
+
+// A sum whose primitive form does not fit 64-bit coefficients: 2*s*sqrt(s) built either way is
+// one node (found by fuzzing: the printed form parsed to a different node).
+TEST(SymCanonical, IntegerMultipleOfAnUnnormalisableSumIsOneNode) {
+  const Expr s = parse_or_throw("1/787662783788549761 - 13443*a");
+  EXPECT_SAME(Expr(2) * (s * sqrt(s)), (Expr(2) * s) * sqrt(s));
+  const Expr e = parse_or_throw("2*(31^-12 - 13443*a)^(3/2)");
+  EXPECT_SAME(parse_or_throw(to_string(e)), e);
+}
+
 }  // namespace
 }  // namespace dyncc::sym

@@ -127,11 +127,21 @@ TEST(SymSubstitute, MatchesEvaluationAtSubstitutedValues) {
   Generator gen(0x5B57);
   const Expr x = symbol("x");
   const Expr q1 = symbol("q1");
+  int overflowed = 0;
   for (int n = 0; n < 300; ++n) {
-    const Sample e = gen.expression(3);
-    const Sample a = gen.expression(2);
-    const Sample b = gen.expression(2);
-    const Expr s = substitute(e.expr, {{x, a.expr}, {q1, b.expr}});
+    Sample e;
+    Sample a;
+    Sample b;
+    Expr s;
+    try {
+      e = gen.expression(3);
+      a = gen.expression(2);
+      b = gen.expression(2);
+      s = substitute(e.expr, {{x, a.expr}, {q1, b.expr}});
+    } catch (const RationalOverflow&) {
+      ++overflowed;  // e.g. (6250000/1408969)^6 does not fit in 64 bits: nothing to compare
+      continue;
+    }
     for (int k = 0; k < 2; ++k) {
       const Point p = gen.point();
       Point moved = p;
@@ -144,6 +154,7 @@ TEST(SymSubstitute, MatchesEvaluationAtSubstitutedValues) {
           << " vs " << expected;
     }
   }
+  EXPECT_LT(overflowed, 30);  // the property was checked on the great majority of samples
 }
 
 TEST(SymSubstitute, ExactRationalValuesOfPolynomials) {

@@ -348,5 +348,27 @@ TEST(SymZero, SimplifyIsEqualAndNeverLarger) {
   EXPECT_EQ(simplify(parse_or_throw("2*sin(x)*cos(x) - sin(2*x) + y")), symbol("y"));
 }
 
+// The normal form of sin(S)^2 + cos(S)^2 - 1 with S a sum of 14 angles has ~2^28 monomial
+// products; without a work budget it ran for minutes and ended in bad_alloc (found by fuzzing).
+TEST(SymZero, WorkBudgetEndsHugeNormalFormsInSampling) {
+  std::vector<Expr> angles;
+  for (char c = 'a'; c <= 'n'; ++c) angles.push_back(symbol(std::string(1, c)));
+  const Expr s = add(angles);
+  const Expr identity = pow(sin(s), 2) + pow(cos(s), 2) - Expr(1);
+  EXPECT_THROW(trig_normal_form(identity), std::overflow_error);
+  const ZeroTestResult r = test_zero(identity);
+  EXPECT_EQ(r.verdict, ZeroVerdict::Unknown);  // sampling cannot prove zero, and finds no witness
+  EXPECT_FALSE(r.proved);
+  EXPECT_NE(r.note.find("too large"), std::string::npos) << r.note;
+
+  // The budget is a parameter: a small identity is proved with the default budget and is
+  // left undecided (never called non-zero) with a budget too small for it.
+  const Expr x = symbol("x");
+  const Expr y = symbol("y");
+  const Expr small = sin(x + y) - sin(x) * cos(y) - cos(x) * sin(y);
+  EXPECT_EQ(test_zero(small).verdict, ZeroVerdict::Zero);
+  EXPECT_EQ(test_zero(small, 2).verdict, ZeroVerdict::Unknown);
+}
+
 }  // namespace
 }  // namespace dyncc::sym

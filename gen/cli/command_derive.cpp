@@ -128,7 +128,8 @@ int run_derive(const DeriveOptions& o) {
     const int fv = d->model.params.viscous_of[k];
     const std::string qd = d->model.qd[k].name();
     std::vector<std::string> terms;
-    if (fc >= 0) terms.push_back(fmt::format("{}*sgn({})", d->model.params.list[static_cast<std::size_t>(fc)].name, qd));
+    if (fc >= 0)
+      terms.push_back(fmt::format("{}*sgn({})", d->model.params.list[static_cast<std::size_t>(fc)].name, qd));
     if (fv >= 0) terms.push_back(fmt::format("{}*{}", d->model.params.list[static_cast<std::size_t>(fv)].name, qd));
     const std::string text = terms.empty() ? std::string("0") : fmt::format("{}", fmt::join(terms, " + "));
     if (o.latex) {

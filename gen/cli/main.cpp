@@ -33,8 +33,8 @@ void add_expr_commands(CLI::App& app, int& exit_code) {
   auto* expand = add("expand", "Multiply out products and powers of sums", run_expr_expand);
   expand->add_option("EXPR", o->expression, "Expression")->required();
   expand->add_flag("--latex", o->latex, "Print LaTeX instead of plain text");
-  auto* zero = add("zero", "Decide whether EXPR is identically zero (exit 0) or not (exit 1, with a witness)",
-                   run_expr_zero);
+  auto* zero =
+      add("zero", "Decide whether EXPR is identically zero (exit 0) or not (exit 1, with a witness)", run_expr_zero);
   zero->add_option("EXPR", o->expression, "Expression")->required();
   auto* eval = add("eval", "Evaluate EXPR at VAR=VALUE ...", run_expr_eval);
   eval->add_option("EXPR", o->expression, "Expression")->required();
@@ -43,8 +43,7 @@ void add_expr_commands(CLI::App& app, int& exit_code) {
 
 void add_robot_commands(CLI::App& app, int& exit_code) {
   auto check = std::make_shared<CheckOptions>();
-  auto* check_cmd =
-      app.add_subcommand("check", "Load and validate a robot description and print what was understood");
+  auto* check_cmd = app.add_subcommand("check", "Load and validate a robot description and print what was understood");
   check_cmd->add_option("robot", check->robot, "Robot description (YAML)")->required();
   check_cmd->callback([&exit_code, check] { exit_code = run_check(*check); });
 
@@ -56,8 +55,9 @@ void add_robot_commands(CLI::App& app, int& exit_code) {
   derive_cmd->callback([&exit_code, derive] { exit_code = run_derive(*derive); });
 
   auto eval = std::make_shared<EvalOptions>();
-  auto* eval_cmd = app.add_subcommand(
-      "eval", "Evaluate H, C, g, friction, tau, Y and the base parameters at a state (nominal parameters)");
+  auto* eval_cmd =
+      app.add_subcommand("eval",
+                         "Evaluate H, C, g, friction, tau, Y and the base parameters at a state (nominal parameters)");
   eval_cmd->add_option("ROBOT", eval->robot, "Robot description (YAML)")->required();
   eval_cmd->add_option("--q", eval->q, "Coordinates, comma-separated")->delimiter(',');
   eval_cmd->add_option("--qd", eval->qd, "Coordinate rates (default 0)")->delimiter(',');

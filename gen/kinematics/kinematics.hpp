@@ -30,7 +30,7 @@ struct Kinematics {
 struct RelativeFrame {
   Mat3 rotation;
   Vec3 origin;
-  Vec3 joint_axis;                 // axis of the joint's rotation/translation, in parent coordinates
+  Vec3 joint_axis;                         // axis of the joint's rotation/translation, in parent coordinates
   bool axis_through_child_origin = false;  // modified D-H: rotation about the child's own z axis
 };
 RelativeFrame dh_frame(robot::Convention convention, sym::Expr a, sym::Expr alpha, sym::Expr d, sym::Expr theta);

@@ -1,6 +1,5 @@
 #include "sym/diff.hpp"
 
-#include <ranges>
 #include <stdexcept>
 #include <unordered_map>
 #include <vector>
@@ -97,7 +96,8 @@ std::vector<Expr> gradient(Expr f, std::span<const Expr> vars) {
   std::unordered_map<const Node*, std::vector<Expr>> contributions;
   contributions[f.node()].push_back(Expr(1));
   std::vector<Expr> result(vars.size(), Expr(0));
-  for (const Expr e : std::views::reverse(order)) {
+  for (std::size_t i = order.size(); i-- > 0;) {
+    const Expr e = order[i];
     const auto found = contributions.find(e.node());
     if (found == contributions.end()) continue;
     const Expr adj = add(found->second);

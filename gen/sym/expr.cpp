@@ -185,18 +185,31 @@ std::pair<Rational, Expr> primitive_part(Expr sum) {
   if (l == 0) l = 1;
   Rational content(static_cast<std::int64_t>(g), static_cast<std::int64_t>(l));
   if (sum.weights()[0].is_negative()) content = -content;
-  if (content.is_one()) return {content, sum};
-  Node n;
-  n.kind = Kind::Add;
-  try {
-    n.value = sum.value() / content;
+  const auto divided_by = [&sum](const Rational& c) {
+    Node n;
+    n.kind = Kind::Add;
+    n.value = sum.value() / c;
     n.weights.reserve(sum.weights().size());
-    for (const Rational& w : sum.weights()) n.weights.push_back(w / content);
+    for (const Rational& w : sum.weights()) n.weights.push_back(w / c);
+    n.args.assign(sum.args().begin(), sum.args().end());  // same terms, so the same canonical order
+    return n;
+  };
+  if (content.is_one()) return {content, sum};
+  try {
+    return {content, intern(divided_by(content))};
   } catch (const RationalOverflow&) {
-    return {Rational(1), sum};  // extreme coefficients: leave the sum as it is
   }
-  n.args.assign(sum.args().begin(), sum.args().end());  // same terms, so the same canonical order
-  return {content, intern(std::move(n))};
+  // Extreme coefficients (clearing the denominators overflows): take out the sign and the gcd of
+  // the numerators only, which still maps 2*s and s to one primitive sum, whichever of the two
+  // was built first. Leaving such a sum as it was made node identity depend on construction order.
+  Rational integer_content(static_cast<std::int64_t>(g));
+  if (sum.weights()[0].is_negative()) integer_content = -integer_content;
+  if (integer_content.is_one()) return {integer_content, sum};
+  try {
+    return {integer_content, intern(divided_by(integer_content))};
+  } catch (const RationalOverflow&) {
+    return {Rational(1), sum};
+  }
 }
 
 void accumulate_factor(Expr e, const Rational& exponent, Rational& coef, WeightedList& factors) {
@@ -221,6 +234,28 @@ void accumulate_factor(Expr e, const Rational& exponent, Rational& coef, Weighte
   }
 }
 
+// sqrt(u)^k * u^m with k and m of opposite signs (sqrt(u)/u, u*sqrt(u)^-1) is rewritten as
+// sqrt(u)^(k + 2m), which the pull-out rule in build_mul then splits as u^w * sqrt(u)^r with w and
+// r of one sign. Without it, 1/sqrt(u) and sqrt(u)/u were different nodes, so (a/d)*d != a for
+// a = 1/sqrt(u), d = sqrt(u). Only sums and atoms as u (a product u is split into its factors).
+bool merge_sqrt_with_its_square(Rational& coef, WeightedList& factors) {
+  for (auto& [base, k] : factors) {
+    if (base.kind() != Kind::Sqrt || k.is_zero()) continue;
+    const Expr u = base.args()[0];
+    if (u.kind() == Kind::Mul || u.kind() == Kind::Number) continue;
+    const auto [content, stored] = u.kind() == Kind::Add ? primitive_part(u) : std::pair{Rational(1), u};
+    for (auto& [other, m] : factors) {
+      if (other != stored || m.is_zero() || k.is_negative() == m.is_negative()) continue;
+      // stored^m = (u / content)^m
+      coef = coef / content.pow(checked_exponent(m));
+      k += m * Rational(2);
+      m = Rational(0);
+      return true;
+    }
+  }
+  return false;
+}
+
 Expr build_mul(Rational coef, WeightedList& factors) {
   if (coef.is_zero()) return Expr(0);
   for (;;) {
@@ -238,6 +273,7 @@ Expr build_mul(Rational coef, WeightedList& factors) {
         break;
       }
     }
+    if (!changed) changed = merge_sqrt_with_its_square(coef, factors);
     if (!changed) break;
   }
   for (const auto& [base, exp] : factors) checked_exponent(exp);

@@ -75,7 +75,7 @@ class ModularFunction {
   };
   struct Operand {
     std::uint32_t slot = 0;  // input or instruction slot; for sin/cos: the symbol's input index
-    Rational coefficient;  // Add coefficient | Mul exponent | sin/cos integer multiple
+    Rational coefficient;    // Add coefficient | Mul exponent | sin/cos integer multiple
   };
   // Field images of the exact constants, per prime, converted on first use: a conversion
   // costs a modular inverse, far more than the evaluation itself.

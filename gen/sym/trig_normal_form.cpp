@@ -88,7 +88,7 @@ struct Angle {
 
 class NormalFormBuilder {
  public:
-  explicit NormalFormBuilder(Expr root) { collect_angles(root); }
+  NormalFormBuilder(Expr root, std::size_t work_budget) : work_budget_(work_budget) { collect_angles(root); }
 
   Poly run(Expr e) { return to_poly(e); }
 
@@ -195,6 +195,7 @@ class NormalFormBuilder {
   // sqrt(u)^k by sqrt(u)^(k mod 2) * u^(k div 2).
   Poly reduce(Poly p) {
     for (;;) {
+      spend(p.size());  // one pass lowers each monomial's sin^2 by one: s^60 takes 30 passes
       bool changed = false;
       Poly out;
       out.reserve(p.size());
@@ -232,7 +233,16 @@ class NormalFormBuilder {
     }
   }
 
+  void spend(std::size_t work) {
+    work_ += work;
+    if (work_ > work_budget_) throw std::overflow_error("expression too large for the trigonometric normal form");
+  }
+
   Poly multiply(const Poly& a, const Poly& b) {
+    // A budget on monomial products, so that an expression whose normal form would be huge
+    // (sin of a sum of 14 angles squared has 2^28 products) ends in the documented
+    // overflow_error (callers fall back to sampling) instead of minutes of work and bad_alloc.
+    spend(a.size() * b.size());
     Poly out;
     out.reserve(a.size() * b.size());
     for (const auto& [ma, ca] : a) {
@@ -367,6 +377,8 @@ class NormalFormBuilder {
   std::unordered_map<std::uint32_t, Poly> square_of_;  // sqrt(u)'s variable -> u
   bool exact_ = true;
   std::string note_;
+  std::size_t work_budget_;
+  std::size_t work_ = 0;  // monomial operations so far
 };
 
 // A value and a bound on its rounding error (first-order running error analysis). Sampling
@@ -493,13 +505,13 @@ bool find_witness(Expr e, ZeroTestResult& result) {
 
 }  // namespace
 
-TrigNormalForm trig_normal_form(Expr e) {
-  NormalFormBuilder builder(e);
+TrigNormalForm trig_normal_form(Expr e, std::size_t work_budget) {
+  NormalFormBuilder builder(e, work_budget);
   const Poly p = builder.run(e);
   return {builder.to_expr(p), builder.exact(), p.size()};
 }
 
-ZeroTestResult test_zero(Expr e) {
+ZeroTestResult test_zero(Expr e, std::size_t work_budget) {
   ZeroTestResult result;
   if (e.is_zero()) {
     result.verdict = ZeroVerdict::Zero;
@@ -507,7 +519,7 @@ ZeroTestResult test_zero(Expr e) {
     return result;
   }
   try {
-    NormalFormBuilder builder(e);
+    NormalFormBuilder builder(e, work_budget);
     const Poly p = builder.run(e);
     if (p.empty()) {
       result.verdict = ZeroVerdict::Zero;
