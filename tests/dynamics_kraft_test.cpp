@@ -54,15 +54,18 @@ std::array<double, 15> paper_parameters(const Params& v, const Geometry& k) {
   const double I5zz = P("i5zz") + m5 * x5 * x5;
   const double I24xx = I2xx + I4xx, I24yy = I2yy + I4yy, I24zz = I2zz + I4zz;
   const double I35xx = I3xx + I5xx, I35yy = I3yy + I5yy, I35zz = I3zz + I5zz;
-  return {I1zz,
+  // The reflected actuator inertias add to H11, H22, H33, whose constant parts are p0, p6, p8:
+  // the paper's identified values include them (the appendix's H has no separate motor terms).
+  const double jm1 = P("jm1"), jm2 = P("jm2"), jm3 = P("jm3");
+  return {I1zz + jm1,
           I3xy,
           I3yz,
           I24xx,
           I35xx,
           I24yy + m3 * k.l2 * k.l2,
-          I24zz + m3 * k.l2 * k.l2,
+          I24zz + m3 * k.l2 * k.l2 + jm2,
           I35yy + m4 * k.l5 * k.l5,
-          I35zz + m4 * k.l5 * k.l5,  // ERRATA 4: I35zz, not I3zz
+          I35zz + m4 * k.l5 * k.l5 + jm3,  // ERRATA 4: I35zz, not I3zz
           I3xz - m4 * k.l5 * k.b1 - m5 * x5 * k.b3,
           m3 * y3,
           m3 * x3 * k.l2 + m4 * x4 * k.l5,
@@ -113,6 +116,8 @@ Params random_link_parameters(const robot::RobotDescription& robot, std::mt19937
       value = mass(rng);
     } else if (name[0] == 'x' || name[0] == 'y' || name[0] == 'z') {
       value = offset(rng);
+    } else if (name[0] == 'j') {
+      value = moment(rng);  // actuator inertia
     } else if (name[0] == 'i') {
       const bool diagonal = name.size() == 4 && name[2] == name[3];
       value = diagonal ? moment(rng) : product(rng);
@@ -204,6 +209,20 @@ TEST_F(KraftAppendix, DescriptionGroupingIsTheAppendixDefinitions) {
       EXPECT_NEAR(sym::evaluate(bp.value, values), p[i], 1e-14 * std::max(1.0, std::abs(p[i]))) << bp.name;
     }
   }
+}
+
+// The nominal link values of robots/kraft.yaml are fitted to the paper's identified p0..p14
+// (docs/robot-description.md gives the table): every grouping, computed here from the appendix's
+// definitions, is within 12 % of the paper's value. And the reason actuator inertias are needed:
+// the paper's values break the triangle inequality p3 + p5 >= p6 of links 2 and 4.
+TEST_F(KraftAppendix, NominalValuesReproduceThePapersIdentifiedValues) {
+  const std::array<double, 15> paper = {0.0489, 0.0021,  -0.0214, 0.0521, 0.0807, 0.0973, 0.3449, 0.3999,
+                                        0.5819, -0.0209, 0.0523,  0.0827, 0.0088, 0.0650, 0.0996};
+  const auto p = paper_parameters(d_->robot.nominal_values(), k_);
+  for (std::size_t i = 0; i < paper.size(); ++i) {
+    EXPECT_LT(std::abs(p[i] - paper[i]), 0.12 * std::abs(paper[i])) << "p" << i << " = " << p[i];
+  }
+  EXPECT_LT(paper[3] + paper[5], paper[6]);  // so rigid links alone could not reproduce them
 }
 
 }  // namespace

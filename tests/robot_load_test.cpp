@@ -83,12 +83,12 @@ TEST(RobotLoad, KraftStructure) {
   EXPECT_EQ(robot.links[4].theta, sym::parse_or_throw("q2 - q3"));
   EXPECT_EQ(robot.links[1].alpha, sym::parse_or_throw("-pi/2"));
   EXPECT_EQ(robot.gravity[2], sym::parse_or_throw("-9.81"));
-  // 32 inertial unknowns (paper's appendix) + 6 friction.
-  EXPECT_EQ(robot.parameters.size(), 38u);
+  // 32 inertial unknowns (paper's appendix) + 6 friction + 3 actuator inertias.
+  EXPECT_EQ(robot.parameters.size(), 41u);
   const std::vector<std::string> expected_start = {"m1", "y1", "z1", "i1xx", "i1yy", "i1zz", "i1yz", "m2", "x2"};
   const std::vector<std::string> actual = parameter_names(robot);
   EXPECT_TRUE(std::equal(expected_start.begin(), expected_start.end(), actual.begin()));
-  EXPECT_EQ(actual.back(), "fv3");
+  EXPECT_EQ(actual.back(), "jm3");
   const Parameter* fc1 = robot.find_parameter("fc1");
   ASSERT_NE(fc1, nullptr);
   EXPECT_EQ(fc1->role, ParameterRole::CoulombFriction);
