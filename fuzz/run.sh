@@ -4,6 +4,8 @@
 #
 # Usage: fuzz/run.sh [--seconds N] [--jobs N] [--no-build] [--crashes] [TARGET...]
 #   --seconds N  fuzzing time per target (default $FUZZ_SECONDS or 60)
+#   --runs N     instead of a time, N inputs per target from a fixed seed (-seed=1): the same
+#                inputs on every run, so a CI failure is a real finding that reproduces, not luck
 #   --jobs N     build parallelism (default 2)
 #   --no-build   use the existing build/asan/fuzz binaries
 #   --crashes    instead of fuzzing, replay the reproducers in fuzz/crashes/ and fail if any
@@ -20,6 +22,7 @@ set -euo pipefail
 
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 seconds=${FUZZ_SECONDS:-60}
+runs=0
 jobs=2
 build=1
 replay=0
@@ -27,6 +30,7 @@ targets=()
 while (($#)); do
   case "$1" in
     --seconds) seconds=$2; shift 2 ;;
+    --runs) runs=$2; shift 2 ;;
     --jobs) jobs=$2; shift 2 ;;
     --no-build) build=0; shift ;;
     --crashes) replay=1; shift ;;
@@ -98,15 +102,21 @@ for t in "${targets[@]}"; do
   read -ra options <<<"$(options_of "$t")"
   # Interned expression nodes are never freed, so one process grows ~5 MB/s at full speed; long
   # runs use a worker process that libFuzzer restarts (stops at the first failure all the same).
-  ((seconds > 300)) && options+=(-fork=1)
+  ((seconds > 300 && runs == 0)) && options+=(-fork=1)
+  if ((runs > 0)); then
+    options+=(-runs="$runs" -seed=1)
+    rm -rf "$corpus" && mkdir -p "$corpus"  # start from the committed seeds only, as CI does
+  else
+    options+=(-max_total_time="$seconds")
+  fi
   status=0
-  "$bin/$t" -max_total_time="$seconds" -timeout=5 -rss_limit_mb=2048 -print_final_stats=1 \
+  "$bin/$t" -timeout=5 -rss_limit_mb=2048 -print_final_stats=1 \
     -dict="$(dict_of "$t")" "${options[@]}" -artifact_prefix="$artifacts/$t-" \
     "$corpus" "${seeds[@]}" >"$log" 2>&1 || status=$?
   stats=$(grep -E '^stat::(number_of_executed_units|average_exec_per_sec|peak_rss_mb)' "$log" |
           sed 's/^stat:://' | tr -s ' ' | tr '\n' ' ')
   if ((status == 0)); then
-    echo "ok:     $t ${seconds}s  $stats"
+    echo "ok:     $t $( ((runs > 0)) && echo "${runs} runs" || echo "${seconds}s")  $stats"
   else
     echo "FAILED: $t (exit $status)  $stats"
     grep -E '^(fuzz_|==[0-9]+==ERROR|SUMMARY|.*runtime error|terminate called|  what\(\))' "$log" | head -10 | sed 's/^/  /'

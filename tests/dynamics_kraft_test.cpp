@@ -14,6 +14,7 @@
 #include <random>
 #include <unordered_map>
 
+#include "base/initial_estimate.hpp"
 #include "dynamics_support.hpp"
 #include "sym/evaluate.hpp"
 
@@ -223,6 +224,37 @@ TEST_F(KraftAppendix, NominalValuesReproduceThePapersIdentifiedValues) {
     EXPECT_LT(std::abs(p[i] - paper[i]), 0.12 * std::abs(paper[i])) << "p" << i << " = " << p[i];
   }
   EXPECT_LT(paper[3] + paper[5], paper[6]);  // so rigid links alone could not reproduce them
+}
+
+// The description's initial_estimate (the paper's p0..p20) mapped onto the base set: the torque
+// Y_base * estimate equals the appendix's H*a + C*v + g with the paper's p's themselves plus the
+// paper's friction, at random states. The paper's grouping is redundant, so this checks that the
+// mapping keeps exactly the torque-relevant part.
+TEST_F(KraftAppendix, InitialEstimateOnTheBaseSetGivesThePapersTorque) {
+  ASSERT_TRUE(d_->grouping && d_->grouping->complete);
+  const base::InitialEstimate estimate = base::map_initial_estimate(d_->robot, *d_->grouping);
+  EXPECT_TRUE(estimate.from_nominal_values.empty());
+  std::array<double, 15> p{};
+  std::unordered_map<std::string, double> given;
+  for (const auto& e : d_->robot.initial_estimate) given[e.name] = e.value;
+  for (std::size_t i = 0; i < p.size(); ++i) p[i] = given.at(std::string("p").append(std::to_string(i)));
+  const Eigen::Vector3d fc(given.at("fc1"), given.at("fc2"), given.at("fc3"));
+  const Eigen::Vector3d fv(given.at("fv1"), given.at("fv2"), given.at("fv3"));
+  const Eigen::VectorXd standard = d_->numeric->nominal_standard_values();
+  std::mt19937_64 rng(2026);
+  double worst = 0;
+  for (int k = 0; k < 50; ++k) {
+    const dyn::State s = random_state(3, rng);
+    const dyn::Evaluation e = d_->numeric->evaluate(s, standard);
+    const Eigen::VectorXd tau = base::base_regressor(d_->base, e.Y) * estimate.base_values;
+    const Appendix a = appendix(p, k_.l2, s.q, s.qd);
+    Eigen::Vector3d expected = a.H * s.a + a.C * s.v + a.g;
+    for (int j = 0; j < 3; ++j)
+      expected[j] += fc[j] * (s.qd[j] > 0 ? 1.0 : (s.qd[j] < 0 ? -1.0 : 0.0)) + fv[j] * s.v[j];
+    worst = std::max(worst, (tau - expected).cwiseAbs().maxCoeff() / std::max(1.0, expected.cwiseAbs().maxCoeff()));
+  }
+  EXPECT_LT(worst, 1e-12);
+  RecordProperty("largest_relative_error", scientific(worst));
 }
 
 }  // namespace

@@ -164,6 +164,7 @@ GroupingCheck check_grouping(const robot::RobotDescription& robot, const dyn::Dy
       continue;
     }
     out.names.push_back(robot.base_parameters[k].name);
+    out.description_names.push_back(robot.base_parameters[k].name);
     rows.push_back(x);
   }
   // Friction the grouping does not mention is added as it is.
@@ -179,6 +180,7 @@ GroupingCheck check_grouping(const robot::RobotDescription& robot, const dyn::Dy
     rows.push_back(e);
     out.names.push_back(model.params.list[static_cast<std::size_t>(l)].name);
     added.push_back(sym::to_string(model.params.list[static_cast<std::size_t>(l)].definition));
+    out.description_names.push_back(added.back());
   }
   if (!added.empty())
     out.warnings.push_back(fmt::format("friction parameters not in base_parameters are used as they are: {}",

@@ -18,6 +18,8 @@ namespace dyncc::base {
 
 struct GroupingCheck {
   std::vector<std::string> names;                   // the user's names, then any friction parameters added
+  std::vector<std::string> description_names;       // parallel: the grouping's name, or the friction
+                                                    // entry as written (fc1, or a number)
   Eigen::MatrixXd rows;                             // user parameter = rows * standard parameters
   Eigen::MatrixXd to_base;                          // base = to_base * user values (valid when complete)
   bool complete = false;                            // spans the identifiable space

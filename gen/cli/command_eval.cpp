@@ -4,9 +4,11 @@
 
 #include <Eigen/Dense>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "base/initial_estimate.hpp"
 #include "cli/commands.hpp"
 #include "cli/robot_input.hpp"
 #include "sym/print.hpp"
@@ -74,6 +76,11 @@ int run_eval(const EvalOptions& o) {
   const Eigen::VectorXd base_values = d->base.values(standard);
   const Eigen::MatrixXd Yb = base::base_regressor(d->base, e.Y);
   const Eigen::VectorXd tau = Yb * base_values;
+  // The description's initial_estimate (e.g. the paper's p0..p20) on the base set.
+  std::optional<base::InitialEstimate> estimate;
+  if (!d->robot.initial_estimate.empty() && d->grouping && d->grouping->complete) {
+    estimate = base::map_initial_estimate(d->robot, *d->grouping);
+  }
 
   if (o.json) {
     nlohmann::json j;
@@ -94,6 +101,11 @@ int run_eval(const EvalOptions& o) {
       defs.push_back(sym::to_string(b.definition));
     }
     j["base_parameters"] = {{"names", names}, {"definitions", defs}, {"values", to_json(base_values)}};
+    if (estimate) {
+      j["initial_estimate"] = {{"names", names},
+                               {"values", to_json(estimate->base_values)},
+                               {"from_nominal_values", estimate->from_nominal_values}};
+    }
     nlohmann::json snames = nlohmann::json::array();
     nlohmann::json sdefs = nlohmann::json::array();
     for (const auto& p : d->model.params.list) {
@@ -112,10 +124,16 @@ int run_eval(const EvalOptions& o) {
   print_matrix("friction", e.friction);
   print_matrix("tau", tau);
   print_matrix("Y (base parameters)", Yb);
-  fmt::print("base parameters:\n");
+  fmt::print("base parameters{}:\n", estimate ? " (nominal value, initial_estimate mapped onto the base set)" : "");
   for (std::size_t b = 0; b < d->base.list.size(); ++b) {
-    fmt::print("  {:<8} = {:>13.6g}   = {}\n", d->base.list[b].name, base_values[static_cast<Eigen::Index>(b)],
+    const auto i = static_cast<Eigen::Index>(b);
+    const std::string mapped = estimate ? fmt::format(" {:>13.6g}", estimate->base_values[i]) : std::string();
+    fmt::print("  {:<8} = {:>13.6g}{}   = {}\n", d->base.list[b].name, base_values[i], mapped,
                sym::to_string(d->base.list[b].definition));
+  }
+  if (estimate && !estimate->from_nominal_values.empty()) {
+    fmt::print("  (initial_estimate gives no value for {}: nominal values used)\n",
+               fmt::join(estimate->from_nominal_values, ", "));
   }
   return kSuccess;
 }

@@ -139,6 +139,15 @@ struct BaseParameter {
   SourceLocation location;
 };
 
+/// A starting value for one parameter of the user grouping (or a parameter outside it, such as
+/// a friction coefficient): the `initial_estimate:` section, e.g. the paper's p0..p20, which a
+/// controller maps onto the base parameters as its first estimate.
+struct EstimateEntry {
+  std::string name;
+  double value = 0.0;
+  SourceLocation location;
+};
+
 struct RobotDescription {
   std::string name;
   std::string description;
@@ -154,7 +163,8 @@ struct RobotDescription {
   std::vector<JointLimit> joint_limits;              // at most one per coordinate, in file order
   std::vector<Parameter> parameters;                 // the unknowns, in order of first use in the file
   std::vector<Loop> loops;
-  std::vector<BaseParameter> base_parameters;  // in file order
+  std::vector<BaseParameter> base_parameters;   // in file order
+  std::vector<EstimateEntry> initial_estimate;  // in file order; names are groupings or parameters
   ConsistencyMode physical_consistency = ConsistencyMode::Error;
 
   /// constant symbol -> exact value; substitute() it to turn geometry into numbers.

@@ -18,9 +18,21 @@ using detail::LoadState;
 using detail::Located;
 using detail::YamlReader;
 
-const std::vector<std::string> kTopLevelFields = {
-    "name",     "description", "convention",   "gravity",    "coordinates", "constants",       "links",
-    "friction", "rotor",       "joint_limits", "parameters", "loops",       "base_parameters", "physical_consistency"};
+const std::vector<std::string> kTopLevelFields = {"name",
+                                                  "description",
+                                                  "convention",
+                                                  "gravity",
+                                                  "coordinates",
+                                                  "constants",
+                                                  "links",
+                                                  "friction",
+                                                  "rotor",
+                                                  "joint_limits",
+                                                  "parameters",
+                                                  "loops",
+                                                  "base_parameters",
+                                                  "initial_estimate",
+                                                  "physical_consistency"};
 
 LoadResult finish(const DiagnosticSink& sink, std::optional<RobotDescription> robot) {
   LoadResult result;
@@ -71,6 +83,7 @@ void read_document(YamlReader& reader, LoadState& state, const YAML::Node& docum
   section("parameters", detail::read_parameters);
   section("loops", detail::read_loops);
   section("base_parameters", detail::read_base_parameters);
+  section("initial_estimate", detail::read_initial_estimate);
   if (top.contains("links")) detail::validate(state, reader.sink());
 }
 

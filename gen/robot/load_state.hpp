@@ -76,6 +76,7 @@ void read_joint_limits(YamlReader& reader, LoadState& state, const Located& valu
 void read_parameters(YamlReader& reader, LoadState& state, const Located& value);
 void read_loops(YamlReader& reader, LoadState& state, const Located& value);
 void read_base_parameters(YamlReader& reader, LoadState& state, const Located& value);
+void read_initial_estimate(YamlReader& reader, LoadState& state, const Located& value);
 
 /// Cross-section checks; fills Link::parent, LoopPoint::link and RobotDescription::parameters.
 void validate(LoadState& state, DiagnosticSink& sink);

@@ -1,10 +1,12 @@
 // Readers for the sections after `links`: friction, rotor, joint_limits, parameters, loops,
 // base_parameters.
 #include <fmt/core.h>
+#include <fmt/format.h>
 
 #include <algorithm>
 
 #include "robot/load_state.hpp"
+#include "robot/spelling.hpp"
 
 namespace dyncc::robot::detail {
 
@@ -171,6 +173,73 @@ void read_base_parameters(YamlReader& reader, LoadState& state, const Located& v
     if (auto expr = read_expression(reader, item, scope)) {
       state.robot.base_parameters.push_back(BaseParameter{*name, *expr, key.location});
     }
+  }
+}
+
+// Names: every grouping of base_parameters must get a value (a partial estimate cannot be mapped
+// onto the base set); parameters outside the groupings (friction, say) may be given too.
+void read_initial_estimate(YamlReader& reader, LoadState& state, const Located& value) {
+  if (!reader.expect_map(value, "starting values of the base_parameters groupings, e.g. {p0: 0.0489}")) return;
+  if (state.robot.base_parameters.empty()) {
+    reader.sink().error(value.location, value.path,
+                        "initial_estimate gives values of base_parameters groupings, but the description has no "
+                        "base_parameters");
+    return;
+  }
+  std::vector<std::string> allowed;
+  for (const auto& b : state.robot.base_parameters) allowed.push_back(b.name);
+  bool all_read = true;
+  for (const auto& [key, item] : reader.entries(value)) {
+    const auto name = reader.identifier(key, "a base_parameters grouping or parameter name");
+    if (!name) {
+      all_read = false;
+      continue;
+    }
+    const bool grouping = std::any_of(state.robot.base_parameters.begin(), state.robot.base_parameters.end(),
+                                      [&](const BaseParameter& b) { return b.name == *name; });
+    if (!grouping && !state.is_parameter(*name)) {
+      const std::string near = closest_match(*name, allowed);
+      reader.sink().error(key.location, key.path,
+                          fmt::format("'{}' is neither a base_parameters grouping nor a parameter{}", *name,
+                                      near.empty() ? std::string() : fmt::format("; did you mean '{}'?", near)));
+      all_read = false;
+      continue;
+    }
+    if (!grouping) {
+      const bool inside = std::any_of(state.robot.base_parameters.begin(), state.robot.base_parameters.end(),
+                                      [&](const BaseParameter& b) {
+                                        const auto symbols = sym::free_symbols(b.value);
+                                        return std::any_of(symbols.begin(), symbols.end(),
+                                                           [&](sym::Expr e) { return e.name() == *name; });
+                                      });
+      if (inside) {
+        reader.sink().error(key.location, key.path,
+                            fmt::format("'{}' enters the base_parameters groupings; give the groupings' values, "
+                                        "not its own",
+                                        *name));
+        all_read = false;
+        continue;
+      }
+    }
+    const auto number = reader.finite_number(item);
+    if (!number) {
+      all_read = false;
+      continue;
+    }
+    state.robot.initial_estimate.push_back(EstimateEntry{*name, *number, key.location});
+  }
+  if (!all_read) return;
+  std::vector<std::string> missing;
+  for (const auto& b : state.robot.base_parameters) {
+    const bool given = std::any_of(state.robot.initial_estimate.begin(), state.robot.initial_estimate.end(),
+                                   [&](const EstimateEntry& e) { return e.name == b.name; });
+    if (!given) missing.push_back(b.name);
+  }
+  if (!missing.empty()) {
+    reader.sink().error(value.location, value.path,
+                        fmt::format("initial_estimate has no value for {} (every base_parameters grouping needs "
+                                    "one)",
+                                    fmt::join(missing, ", ")));
   }
 }
 

@@ -167,7 +167,13 @@ int checked_exponent(const Rational& exponent) {
 // into the product's coefficient. Without this, (2*x + 2*y)*z and 2*((x + y)*z) were distinct
 // nodes (multiplication was not associative on nodes), as were (y - x)*z and -((x - y)*z), and
 // "q/(3*(s + 2))" did not parse back to the node it was printed from.
-std::pair<Rational, Expr> primitive_part(Expr sum) {
+struct PrimitivePart {
+  Rational content;
+  Expr sum;
+  bool exact = true;  // false: the sum's primitive form does not fit 64-bit coefficients
+};
+
+PrimitivePart primitive_part(Expr sum) {
   constexpr Int128 kMax = std::numeric_limits<std::int64_t>::max();
   Int128 g = 0;  // gcd of the numerators
   Int128 l = 1;  // lcm of the denominators; 0 once it does not fit (then they stay as they are)
@@ -182,6 +188,7 @@ std::pair<Rational, Expr> primitive_part(Expr sum) {
   visit(sum.value());
   for (const Rational& w : sum.weights()) visit(w);
   if (g > kMax) g = 1;  // every numerator is INT64_MIN
+  const bool lcm_fits = l != 0;
   if (l == 0) l = 1;
   Rational content(static_cast<std::int64_t>(g), static_cast<std::int64_t>(l));
   if (sum.weights()[0].is_negative()) content = -content;
@@ -194,21 +201,43 @@ std::pair<Rational, Expr> primitive_part(Expr sum) {
     n.args.assign(sum.args().begin(), sum.args().end());  // same terms, so the same canonical order
     return n;
   };
-  if (content.is_one()) return {content, sum};
-  try {
-    return {content, intern(divided_by(content))};
-  } catch (const RationalOverflow&) {
+  if (content.is_one()) return {content, sum, lcm_fits};
+  if (lcm_fits) {
+    try {
+      return {content, intern(divided_by(content)), true};
+    } catch (const RationalOverflow&) {
+    }
   }
   // Extreme coefficients (clearing the denominators overflows): take out the sign and the gcd of
-  // the numerators only, which still maps 2*s and s to one primitive sum, whichever of the two
-  // was built first. Leaving such a sum as it was made node identity depend on construction order.
+  // the numerators only. build_mul then moves a product's coefficient into such a sum (see
+  // distribute_into_inexact_sum), so 2*(s*sqrt(s)) and (2*s)*sqrt(s) still meet in one node.
   Rational integer_content(static_cast<std::int64_t>(g));
   if (sum.weights()[0].is_negative()) integer_content = -integer_content;
-  if (integer_content.is_one()) return {integer_content, sum};
+  if (integer_content.is_one()) return {integer_content, sum, false};
   try {
-    return {integer_content, intern(divided_by(integer_content))};
+    return {integer_content, intern(divided_by(integer_content)), false};
   } catch (const RationalOverflow&) {
-    return {Rational(1), sum};
+    return {Rational(1), sum, false};
+  }
+}
+
+// A product c * s * rest with s a sum whose primitive form does not fit (so its content cannot be
+// taken out and kept in c): c goes into s instead, the form that parsing "c*s*rest" left to right
+// produces (c*s is distributed before rest is multiplied in). Only the first such sum.
+void distribute_into_inexact_sum(Rational& coef, WeightedList& factors) {
+  if (coef.is_one()) return;
+  for (auto& [base, exp] : factors) {
+    if (base.kind() != Kind::Add || !exp.is_one() || primitive_part(base).exact) continue;
+    try {
+      WeightedList terms;
+      terms.reserve(base.args().size());
+      for (std::size_t i = 0; i < base.args().size(); ++i) terms.emplace_back(base.args()[i], coef * base.weights()[i]);
+      base = build_add(coef * base.value(), terms);
+      coef = Rational(1);
+      sort_and_merge(factors);
+    } catch (const RationalOverflow&) {
+    }
+    return;
   }
 }
 
@@ -225,9 +254,9 @@ void accumulate_factor(Expr e, const Rational& exponent, Rational& coef, Weighte
       for (std::size_t i = 0; i < e.args().size(); ++i) factors.emplace_back(e.args()[i], e.weights()[i] * exponent);
       return;
     case Kind::Add: {
-      const auto [content, primitive] = primitive_part(e);
-      coef *= content.pow(checked_exponent(exponent));
-      factors.emplace_back(primitive, exponent);
+      const PrimitivePart part = primitive_part(e);
+      coef *= part.content.pow(checked_exponent(exponent));
+      factors.emplace_back(part.sum, exponent);
       return;
     }
     default: factors.emplace_back(e, exponent); return;
@@ -243,7 +272,8 @@ bool merge_sqrt_with_its_square(Rational& coef, WeightedList& factors) {
     if (base.kind() != Kind::Sqrt || k.is_zero()) continue;
     const Expr u = base.args()[0];
     if (u.kind() == Kind::Mul || u.kind() == Kind::Number) continue;
-    const auto [content, stored] = u.kind() == Kind::Add ? primitive_part(u) : std::pair{Rational(1), u};
+    const auto [content, stored] =
+        u.kind() == Kind::Add ? std::pair{primitive_part(u).content, primitive_part(u).sum} : std::pair{Rational(1), u};
     for (auto& [other, m] : factors) {
       if (other != stored || m.is_zero() || k.is_negative() == m.is_negative()) continue;
       // stored^m = (u / content)^m
@@ -278,6 +308,7 @@ Expr build_mul(Rational coef, WeightedList& factors) {
   }
   for (const auto& [base, exp] : factors) checked_exponent(exp);
   if (coef.is_zero()) return Expr(0);
+  distribute_into_inexact_sum(coef, factors);
   if (factors.empty()) return number(coef);
   if (factors.size() == 1 && factors[0].second.is_one()) {
     const Expr base = factors[0].first;
