@@ -12,7 +12,9 @@ H, gravity from the potential energy. Prints one JSON object with the stage time
 a numeric spot check (H, C, g at a state for the robots/kraft.yaml nominal values), which
 bench/run_derive_comparison.sh holds against `dyncc eval`.
 
-usage: bench/sympy_kraft_lagrangian.py [robots/kraft.yaml]
+usage: bench/sympy_kraft_lagrangian.py [robots/kraft.yaml] [--no-trigsimp]
+  --no-trigsimp  keep H expanded but not trigsimp'ed (C and g then come from the expanded H)
+Each stage's time is also printed to stderr as soon as it ends (trigsimp can take very long).
 """
 import json
 import sys
@@ -46,8 +48,14 @@ def body(name_index, com, inertia):
     return m, c, I
 
 
+def report(stage, times):
+    print(f"{stage}: {times[stage]:.2f} s", file=sys.stderr, flush=True)
+
+
 def main():
-    path = sys.argv[1] if len(sys.argv) > 1 else "robots/kraft.yaml"
+    args = [a for a in sys.argv[1:] if not a.startswith("--")]
+    simplify = "--no-trigsimp" not in sys.argv
+    path = args[0] if args else "robots/kraft.yaml"
     doc = yaml.safe_load(open(path))
     times = {}
     t0 = time.perf_counter()
@@ -87,9 +95,11 @@ def main():
     for j in range(3):
         H[j, j] += sp.Symbol(f"jm{j + 1}")
     times["H_raw"] = time.perf_counter() - t
+    report("H_raw", times)
     t = time.perf_counter()
-    H = H.applyfunc(lambda e: sp.trigsimp(sp.expand(e)))
-    times["H_trigsimp"] = time.perf_counter() - t
+    H = H.applyfunc(lambda e: sp.trigsimp(sp.expand(e)) if simplify else sp.expand(e))
+    times["H_trigsimp" if simplify else "H_expand"] = time.perf_counter() - t
+    report("H_trigsimp" if simplify else "H_expand", times)
 
     # Christoffel C and gravity.
     t = time.perf_counter()
@@ -100,6 +110,7 @@ def main():
             C[i, j] = sum(sp.Rational(1, 2) * (dH[k][i, j] + dH[j][i, k] - dH[i][j, k]) * qd[k] for k in range(3))
     C = C.applyfunc(sp.expand)
     times["C"] = time.perf_counter() - t
+    report("C", times)
     t = time.perf_counter()
     G = sp.Matrix([sp.expand(sp.diff(V, q[k])) for k in range(3)])
     times["g"] = time.perf_counter() - t
