@@ -63,7 +63,7 @@ double energy_drift(const pipeline::Derivation& d, const Eigen::VectorXd& standa
   s.qd *= 0.5;
   auto accel = [&](const Eigen::VectorXd& q, const Eigen::VectorXd& qd) {
     dyn::State st{q, qd, qd, Eigen::VectorXd::Zero(N)};
-    const dyn::Evaluation e = d.numeric->evaluate(st, standard);
+    const dyn::Evaluation e = d.numeric->evaluate(st, standard, /*with_regressor=*/false);
     return Eigen::VectorXd(e.H.ldlt().solve(-(e.C * qd + e.g)));
   };
   Eigen::VectorXd q = s.q;

@@ -93,7 +93,7 @@ Eigen::VectorXd NumericModel::friction(const State& s, const Eigen::VectorXd& st
   return f;
 }
 
-Evaluation NumericModel::evaluate(const State& s, const Eigen::VectorXd& standard) const {
+Evaluation NumericModel::evaluate(const State& s, const Eigen::VectorXd& standard, bool with_regressor) const {
   const auto n = static_cast<Eigen::Index>(n_);
   std::vector<double> in;
   in.insert(in.end(), s.q.data(), s.q.data() + n);
@@ -107,7 +107,7 @@ Evaluation NumericModel::evaluate(const State& s, const Eigen::VectorXd& standar
   e.g = Eigen::Map<const Eigen::VectorXd>(out.data() + 2 * n * n, n);
   e.friction = friction(s, standard);
   e.tau = e.H * s.a + e.C * s.v + e.g + e.friction;
-  e.Y = regressor(s);
+  if (with_regressor) e.Y = regressor(s);
   return e;
 }
 

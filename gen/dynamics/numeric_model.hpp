@@ -32,7 +32,9 @@ class NumericModel {
   [[nodiscard]] Eigen::VectorXd standard_values(const std::map<std::string, double>& parameter_values) const;
   [[nodiscard]] Eigen::VectorXd nominal_standard_values() const { return nominal_; }
 
-  [[nodiscard]] Evaluation evaluate(const State& s, const Eigen::VectorXd& standard) const;
+  /// H, C, g, friction, tau and (unless with_regressor is false: Y is then left empty, which
+  /// makes a simulation step several times cheaper) the regressor Y.
+  [[nodiscard]] Evaluation evaluate(const State& s, const Eigen::VectorXd& standard, bool with_regressor = true) const;
   /// Only the regressor (does not depend on parameters).
   [[nodiscard]] Eigen::MatrixXd regressor(const State& s) const;
   /// H alone (cheaper), for positive-definiteness and energy checks.
