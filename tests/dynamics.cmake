@@ -11,6 +11,6 @@ dyncc_add_test(dynamics_tests
   dynamics_skew_test.cpp
   dynamics_verify_test.cpp
 )
-target_link_libraries(dynamics_tests PRIVATE dyncc_pipeline)
+target_link_libraries(dynamics_tests PRIVATE dyncc_pipeline nlohmann_json::nlohmann_json)
 # The verify tests run the dyncc binary (DYNCC_BINARY): build it before the tests.
 add_dependencies(dynamics_tests dyncc)

@@ -6,6 +6,7 @@
 
 #include <cctype>
 #include <cstdio>
+#include <nlohmann/json.hpp>
 #include <string>
 
 #include "dynamics_support.hpp"
@@ -24,8 +25,9 @@ std::string quote(const std::string& s) {
   return q + "'";
 }
 
-CliRun run_dyncc(const std::string& args) {
-  const std::string command = "timeout 300 " + quote(DYNCC_BINARY) + " " + args + " 2>&1";
+CliRun run_dyncc(const std::string& args, bool with_stderr = true) {
+  const std::string command =
+      "timeout 300 " + quote(DYNCC_BINARY) + " " + args + (with_stderr ? " 2>&1" : " 2>/dev/null");
   CliRun r;
   FILE* pipe = popen(command.c_str(), "r");
   if (pipe == nullptr) return r;
@@ -55,6 +57,37 @@ INSTANTIATE_TEST_SUITE_P(Robots, VerifyShippedRobot, ::testing::ValuesIn(shipped
                            }
                            return s;
                          });
+
+// `dyncc eval --json`: the keys the derivation issue names, matrices as arrays of rows, and the
+// regressor's torque equal to Y times the base-parameter values (checked here, not trusted).
+TEST(EvalCommand, JsonKeysAndTorqueEqualsRegressorTimesBaseValues) {
+  ASSERT_EQ(access(DYNCC_BINARY, X_OK), 0) << "dyncc is not built at " << DYNCC_BINARY;
+  const std::string robot = quote((robots_dir() / "kraft.yaml").string());
+  const CliRun r =
+      run_dyncc("eval " + robot + " --q 0.3,-0.4,0.5 --qd 0.7,-0.2,0.9 --v 0.1,0.2,-0.3 --a 1,-2,0.5 --json",
+                /*with_stderr=*/false);
+  ASSERT_EQ(r.exit_code, 0) << r.out;
+  const nlohmann::json j = nlohmann::json::parse(r.out);
+  for (const char* key : {"H", "C", "g", "friction", "tau", "Y", "base_parameters", "initial_estimate"}) {
+    EXPECT_TRUE(j.contains(key)) << key;
+  }
+  const auto& base = j["base_parameters"];
+  ASSERT_TRUE(base.contains("names") && base.contains("definitions") && base.contains("values"));
+  const std::size_t b = base["names"].size();
+  EXPECT_EQ(b, 19U);  // 13 inertial + 6 friction (the paper's assumptions)
+  ASSERT_EQ(j["H"].size(), 3U);
+  ASSERT_EQ(j["Y"].size(), 3U);
+  ASSERT_EQ(j["Y"][0].size(), b);
+  for (std::size_t i = 0; i < 3; ++i) {
+    double y_p = 0;
+    for (std::size_t k = 0; k < b; ++k) y_p += j["Y"][i][k].get<double>() * base["values"][k].get<double>();
+    EXPECT_NEAR(y_p, j["tau"][i].get<double>(), 1e-12) << "row " << i;
+    for (std::size_t k = 0; k < 3; ++k) EXPECT_DOUBLE_EQ(j["H"][i][k].get<double>(), j["H"][k][i].get<double>());
+  }
+  // The paper's initial estimate on the same base set: one value per base parameter, names shared.
+  EXPECT_EQ(j["initial_estimate"]["names"], base["names"]);
+  EXPECT_EQ(j["initial_estimate"]["values"].size(), b);
+}
 
 }  // namespace
 }  // namespace dyncc::test
