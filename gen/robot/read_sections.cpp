@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <set>
 
 #include "robot/load_state.hpp"
 #include "robot/spelling.hpp"
@@ -186,8 +187,12 @@ void read_initial_estimate(YamlReader& reader, LoadState& state, const Located& 
                         "base_parameters");
     return;
   }
-  std::vector<std::string> allowed;
-  for (const auto& b : state.robot.base_parameters) allowed.push_back(b.name);
+  std::vector<std::string> allowed;  // the grouping names
+  std::set<std::string> inside;      // parameter names the groupings contain
+  for (const auto& b : state.robot.base_parameters) {
+    allowed.push_back(b.name);
+    for (const sym::Expr e : sym::free_symbols(b.value)) inside.insert(e.name());
+  }
   bool all_read = true;
   for (const auto& [key, item] : reader.entries(value)) {
     const auto name = reader.identifier(key, "a base_parameters grouping or parameter name");
@@ -195,8 +200,7 @@ void read_initial_estimate(YamlReader& reader, LoadState& state, const Located& 
       all_read = false;
       continue;
     }
-    const bool grouping = std::any_of(state.robot.base_parameters.begin(), state.robot.base_parameters.end(),
-                                      [&](const BaseParameter& b) { return b.name == *name; });
+    const bool grouping = std::find(allowed.begin(), allowed.end(), *name) != allowed.end();
     if (!grouping && !state.is_parameter(*name)) {
       const std::string near = closest_match(*name, allowed);
       reader.sink().error(key.location, key.path,
@@ -205,21 +209,13 @@ void read_initial_estimate(YamlReader& reader, LoadState& state, const Located& 
       all_read = false;
       continue;
     }
-    if (!grouping) {
-      const bool inside = std::any_of(state.robot.base_parameters.begin(), state.robot.base_parameters.end(),
-                                      [&](const BaseParameter& b) {
-                                        const auto symbols = sym::free_symbols(b.value);
-                                        return std::any_of(symbols.begin(), symbols.end(),
-                                                           [&](sym::Expr e) { return e.name() == *name; });
-                                      });
-      if (inside) {
-        reader.sink().error(key.location, key.path,
-                            fmt::format("'{}' enters the base_parameters groupings; give the groupings' values, "
-                                        "not its own",
-                                        *name));
-        all_read = false;
-        continue;
-      }
+    if (!grouping && inside.contains(*name)) {
+      reader.sink().error(key.location, key.path,
+                          fmt::format("'{}' enters the base_parameters groupings; give the groupings' values, "
+                                      "not its own",
+                                      *name));
+      all_read = false;
+      continue;
     }
     const auto number = reader.finite_number(item);
     if (!number) {

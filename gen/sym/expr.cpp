@@ -272,8 +272,9 @@ bool merge_sqrt_with_its_square(Rational& coef, WeightedList& factors) {
     if (base.kind() != Kind::Sqrt || k.is_zero()) continue;
     const Expr u = base.args()[0];
     if (u.kind() == Kind::Mul || u.kind() == Kind::Number) continue;
-    const auto [content, stored] =
-        u.kind() == Kind::Add ? std::pair{primitive_part(u).content, primitive_part(u).sum} : std::pair{Rational(1), u};
+    const PrimitivePart part = u.kind() == Kind::Add ? primitive_part(u) : PrimitivePart{Rational(1), u};
+    const Rational& content = part.content;
+    const Expr stored = part.sum;
     for (auto& [other, m] : factors) {
       if (other != stored || m.is_zero() || k.is_negative() == m.is_negative()) continue;
       // stored^m = (u / content)^m
