@@ -35,6 +35,20 @@ struct VerifyOptions {
 };
 int run_verify(const VerifyOptions& o);
 
+struct GenerateOptions {
+  std::string robot;
+  std::string out_dir;     // generated/<robot>/
+  bool check = false;      // compare with what is in out_dir instead of writing; exit 1 on a difference
+};
+int run_generate(const GenerateOptions& o);
+
+struct ExportOptions {
+  std::string robot;
+  std::string format;  // "mjcf" or "urdf"
+  std::string out;     // file; empty = standard output
+};
+int run_export(const ExportOptions& o);
+
 struct ExprOptions {
   std::string variable;
   std::string expression;

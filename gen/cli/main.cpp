@@ -76,6 +76,24 @@ void add_robot_commands(CLI::App& app, int& exit_code) {
   verify_cmd->callback([&exit_code, verify] { exit_code = run_verify(*verify); });
 }
 
+void add_output_commands(CLI::App& app, int& exit_code) {
+  auto generate = std::make_shared<GenerateOptions>();
+  auto* generate_cmd =
+      app.add_subcommand("generate", "Emit optimised, allocation-free C++ of the model (H, C, g, Y, fused control step)");
+  generate_cmd->add_option("ROBOT", generate->robot, "Robot description (YAML)")->required();
+  generate_cmd->add_option("-o,--out", generate->out_dir, "Output folder, e.g. generated/kraft")->required();
+  generate_cmd->add_flag("--check", generate->check,
+                         "Write nothing; exit 1 when the folder differs from what would be generated");
+  generate_cmd->callback([&exit_code, generate] { exit_code = run_generate(*generate); });
+
+  auto exp = std::make_shared<ExportOptions>();
+  auto* export_cmd = app.add_subcommand("export", "Write the arm for other tools (MuJoCo MJCF or URDF)");
+  export_cmd->add_option("ROBOT", exp->robot, "Robot description (YAML)")->required();
+  export_cmd->add_option("--format", exp->format, "mjcf or urdf")->required()->check(CLI::IsMember({"mjcf", "urdf"}));
+  export_cmd->add_option("-o,--out", exp->out, "Output file (default: standard output)");
+  export_cmd->callback([&exit_code, exp] { exit_code = run_export(*exp); });
+}
+
 int run(int argc, char** argv) {
   CLI::App app{"dyncc: derives verified rigid-body dynamics from a robot description and emits controller code"};
   app.set_version_flag("--version", std::string("dyncc ") + DYNCC_VERSION);
@@ -83,6 +101,7 @@ int run(int argc, char** argv) {
   int exit_code = kSuccess;
   add_expr_commands(app, exit_code);
   add_robot_commands(app, exit_code);
+  add_output_commands(app, exit_code);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
