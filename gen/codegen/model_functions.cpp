@@ -1,0 +1,313 @@
+#include "codegen/model_functions.hpp"
+
+#include <fmt/format.h>
+
+#include "codegen/lower.hpp"
+#include "sym/diff.hpp"
+#include "sym/substitute.hpp"
+
+namespace dyncc::codegen {
+namespace {
+
+using sym::Expr;
+
+// One regressor column: the expression on every row (friction columns are sgn(qd_k) or v_k on
+// their own row), and whether it is a rigid-body column (enters H, C, g).
+struct Column {
+  std::vector<Expr> rows;
+  bool rigid_body = true;
+};
+
+// Symbols standing for the signs of the rates in regressor expressions (sgn is not a sym
+// function; the generated code computes it).
+Expr sign_symbol(std::size_t k) { return sym::symbol(fmt::format("$sgn{}", k)); }
+Expr parameter_symbol(std::size_t b) { return sym::symbol(fmt::format("$p{}", b)); }
+Expr weight_symbol(std::size_t i) { return sym::symbol(fmt::format("$e{}", i)); }
+
+Column column_of_standard(const pipeline::Derivation& d, int standard, const sym::Substitution& constants) {
+  const dyn::DynamicModel& m = d.model;
+  const std::size_t n = m.q.size();
+  const dyn::StandardParameter& sp = m.params.list[static_cast<std::size_t>(standard)];
+  Column c;
+  c.rows.assign(n, Expr(0));
+  if (sp.kind == dyn::StandardKind::FC || sp.kind == dyn::StandardKind::FV) {
+    const auto k = static_cast<std::size_t>(sp.coordinate);
+    c.rows[k] = sp.kind == dyn::StandardKind::FC ? sign_symbol(k) : m.v[k];
+    c.rigid_body = false;
+    return c;
+  }
+  for (std::size_t i = 0; i < n; ++i) {
+    c.rows[i] = sym::substitute(d.regressor.rows[i][static_cast<std::size_t>(standard)], constants);
+  }
+  return c;
+}
+
+// The inputs every function may read, by symbol. `rates`/`accelerations` name the arrays the
+// velocity arguments come from (the identification form reads v from qd and a from qdd).
+struct InputNames {
+  std::unordered_map<Expr, std::string> map;
+  std::map<std::string, std::string> labels;
+};
+
+InputNames input_names(const dyn::DynamicModel& m, std::size_t parameters, const std::string& v_array,
+                       const std::string& a_array) {
+  InputNames in;
+  auto put = [&in](Expr s, const std::string& c, const std::string& label) {
+    in.map[s] = c;
+    in.labels[c] = label;
+  };
+  for (std::size_t k = 0; k < m.q.size(); ++k) {
+    put(m.q[k], fmt::format("q[{}]", k), m.q[k].name());
+    put(m.qd[k], fmt::format("qd[{}]", k), m.qd[k].name());
+    put(m.v[k], fmt::format("{}[{}]", v_array, k), fmt::format("{}{}", v_array, k + 1));
+    put(m.a[k], fmt::format("{}[{}]", a_array, k), fmt::format("{}{}", a_array, k + 1));
+    put(sign_symbol(k), fmt::format("sgn(qd[{}])", k), fmt::format("sgn_qd{}", k + 1));
+    put(weight_symbol(k), fmt::format("e[{}]", k), fmt::format("e{}", k + 1));
+  }
+  for (std::size_t b = 0; b < parameters; ++b) put(parameter_symbol(b), fmt::format("p[{}]", b), "");
+  return in;
+}
+
+Function make_function(std::string name, std::string summary, std::vector<std::string> params,
+                       std::vector<bool> is_output) {
+  Function f;
+  f.name = std::move(name);
+  f.summary = std::move(summary);
+  f.parameters = std::move(params);
+  f.parameter_is_output = std::move(is_output);
+  return f;
+}
+
+// sum_b p_b * column_b[row], each column already lowered.
+ValueId parameter_dot(Program& prog, Lowering& lower, const std::vector<Expr>& entries,
+                      const std::vector<std::size_t>& which) {
+  ValueId acc = prog.constant(0.0);
+  for (const std::size_t b : which) {
+    if (entries[b].is_zero()) continue;
+    acc = prog.add(acc, prog.mul(lower(parameter_symbol(b)), lower(entries[b])));
+  }
+  return acc;
+}
+
+class Builder {
+ public:
+  Builder(const pipeline::Derivation& d, std::vector<Column> columns)
+      : d_(d), m_(d.model), n_(d.model.q.size()), columns_(std::move(columns)) {
+    for (std::size_t b = 0; b < columns_.size(); ++b) {
+      (columns_[b].rigid_body ? rigid_ : friction_).push_back(b);
+    }
+  }
+
+  // entry(b) for every column, at one row, as expressions.
+  [[nodiscard]] std::vector<Expr> row(std::size_t i) const {
+    std::vector<Expr> r;
+    for (const Column& c : columns_) r.push_back(c.rows[i]);
+    return r;
+  }
+
+  Function mass_matrix() {
+    Function f = make_function("mass_matrix", "H(q): joint-space inertia, row-major n x n", {"q", "p", "H"},
+                               {false, false, true});
+    set_inputs(f, "v", "a");
+    Lowering lower(f.program, inputs_.map);
+    for (std::size_t j = 0; j < n_; ++j) {
+      sym::Differentiator by_a(m_.a[j]);
+      for (std::size_t i = 0; i < n_; ++i) {
+        std::vector<Expr> entries;
+        for (const Column& c : columns_) entries.push_back(c.rigid_body ? by_a(c.rows[i]) : Expr(0));
+        f.program.set_output(fmt::format("H[{}]", i * n_ + j), parameter_dot(f.program, lower, entries, rigid_));
+      }
+    }
+    return f;
+  }
+
+  Function coriolis_matrix() {
+    Function f = make_function("coriolis_matrix", "C(q, qd): Christoffel form (Hdot - 2C skew), row-major n x n",
+                               {"q", "qd", "p", "C"}, {false, false, false, true});
+    set_inputs(f, "v", "a");
+    Lowering lower(f.program, inputs_.map);
+    for (std::size_t j = 0; j < n_; ++j) {
+      sym::Differentiator by_v(m_.v[j]);
+      for (std::size_t i = 0; i < n_; ++i) {
+        std::vector<Expr> entries;
+        for (const Column& c : columns_) entries.push_back(c.rigid_body ? by_v(c.rows[i]) : Expr(0));
+        f.program.set_output(fmt::format("C[{}]", i * n_ + j), parameter_dot(f.program, lower, entries, rigid_));
+      }
+    }
+    return f;
+  }
+
+  Function gravity_torque() {
+    Function f = make_function("gravity_torque", "tau_g(q): gravity torque", {"q", "p", "g"}, {false, false, true});
+    set_inputs(f, "v", "a");
+    Lowering lower(f.program, inputs_.map);
+    sym::Substitution at_rest;
+    for (std::size_t k = 0; k < n_; ++k) {
+      at_rest[m_.qd[k]] = Expr(0);
+      at_rest[m_.v[k]] = Expr(0);
+      at_rest[m_.a[k]] = Expr(0);
+    }
+    for (std::size_t i = 0; i < n_; ++i) {
+      std::vector<Expr> entries;
+      for (const Column& c : columns_) entries.push_back(c.rigid_body ? sym::substitute(c.rows[i], at_rest) : Expr(0));
+      f.program.set_output(fmt::format("g[{}]", i), parameter_dot(f.program, lower, entries, rigid_));
+    }
+    return f;
+  }
+
+  Function friction_torque() {
+    Function f = make_function("friction_torque", "FC sgn(qd) + FV v: joint friction", {"qd", "v", "p", "f"},
+                               {false, false, false, true});
+    set_inputs(f, "v", "a");
+    Lowering lower(f.program, inputs_.map);
+    for (std::size_t i = 0; i < n_; ++i) {
+      f.program.set_output(fmt::format("f[{}]", i), parameter_dot(f.program, lower, row(i), friction_));
+    }
+    return f;
+  }
+
+  Function regressor(bool identification) {
+    Function f = identification
+                     ? make_function("identification_regressor",
+                                     "Y(q, qd, qdd): tau = Y p with v = qd, a = qdd, row-major n x r",
+                                     {"q", "qd", "qdd", "Y"}, {false, false, false, true})
+                     : make_function("regressor", "Y(q, qd, v, a): Y p = H a + C v + g + FC sgn(qd) + FV v, n x r",
+                                     {"q", "qd", "v", "a", "Y"}, {false, false, false, false, true});
+    if (identification) {
+      set_inputs(f, "qd", "qdd");
+    } else {
+      set_inputs(f, "v", "a");
+    }
+    Lowering lower(f.program, inputs_.map);
+    const std::size_t r = columns_.size();
+    for (std::size_t i = 0; i < n_; ++i) {
+      for (std::size_t b = 0; b < r; ++b)
+        f.program.set_output(fmt::format("Y[{}]", i * r + b), lower(columns_[b].rows[i]));
+    }
+    return f;
+  }
+
+  Function slotine_li_torque() {
+    Function f = make_function("slotine_li_torque", "tau = Y(q, qd, v, a) p without forming Y",
+                               {"q", "qd", "v", "a", "p", "tau"}, {false, false, false, false, false, true});
+    set_inputs(f, "v", "a");
+    Lowering lower(f.program, inputs_.map);
+    emit_torque(f, lower);
+    return f;
+  }
+
+  Function adaptation_term() {
+    Function f = make_function("adaptation_term", "YTe = Y(q, qd, v, a)^T e without forming Y",
+                               {"q", "qd", "v", "a", "e", "YTe"}, {false, false, false, false, false, true});
+    set_inputs(f, "v", "a");
+    Lowering lower(f.program, inputs_.map);
+    emit_adaptation(f, lower);
+    return f;
+  }
+
+  Function control_step() {
+    Function f = make_function("control_step", "tau = Y p and YTe = Y^T e in one pass, sharing every subexpression",
+                               {"q", "qd", "v", "a", "p", "e", "tau", "YTe"},
+                               {false, false, false, false, false, false, true, true});
+    set_inputs(f, "v", "a");
+    Lowering lower(f.program, inputs_.map);
+    emit_torque(f, lower);
+    emit_adaptation(f, lower);
+    return f;
+  }
+
+  Function inverse_dynamics() {
+    Function f = make_function("inverse_dynamics", "tau = H qdd + C qd + g + friction", {"q", "qd", "qdd", "p", "tau"},
+                               {false, false, false, false, true});
+    set_inputs(f, "qd", "qdd");
+    Lowering lower(f.program, inputs_.map);
+    emit_torque(f, lower);
+    return f;
+  }
+
+ private:
+  void set_inputs(Function& f, const std::string& v_array, const std::string& a_array) {
+    inputs_ = input_names(m_, columns_.size(), v_array, a_array);
+    f.labels = inputs_.labels;
+  }
+
+  void emit_torque(Function& f, Lowering& lower) {
+    std::vector<std::size_t> all(columns_.size());
+    for (std::size_t b = 0; b < all.size(); ++b) all[b] = b;
+    for (std::size_t i = 0; i < n_; ++i) {
+      f.program.set_output(fmt::format("tau[{}]", i), parameter_dot(f.program, lower, row(i), all));
+    }
+  }
+
+  void emit_adaptation(Function& f, Lowering& lower) {
+    for (std::size_t b = 0; b < columns_.size(); ++b) {
+      ValueId acc = f.program.constant(0.0);
+      for (std::size_t i = 0; i < n_; ++i) {
+        if (columns_[b].rows[i].is_zero()) continue;
+        acc = f.program.add(acc, f.program.mul(lower(columns_[b].rows[i]), lower(weight_symbol(i))));
+      }
+      f.program.set_output(fmt::format("YTe[{}]", b), acc);
+    }
+  }
+
+  const pipeline::Derivation& d_;
+  const dyn::DynamicModel& m_;
+  std::size_t n_;
+  std::vector<Column> columns_;
+  std::vector<std::size_t> rigid_, friction_;
+  InputNames inputs_;
+};
+
+Function base_parameters_from_link(const pipeline::Derivation& d) {
+  Function f =
+      make_function("base_parameters_from_link", "p from the description's link parameters (kLinkParameterNames order)",
+                    {"link", "p"}, {false, true});
+  std::unordered_map<Expr, std::string> inputs;
+  for (std::size_t k = 0; k < d.robot.parameters.size(); ++k) {
+    const std::string c = fmt::format("link[{}]", k);
+    inputs[d.robot.parameters[k].symbol] = c;
+    f.labels[c] = d.robot.parameters[k].name;
+  }
+  Lowering lower(f.program, inputs);
+  const sym::Substitution constants = d.robot.constant_values();
+  for (std::size_t b = 0; b < d.base.list.size(); ++b) {
+    f.program.set_output(fmt::format("p[{}]", b), lower(sym::substitute(d.base.list[b].definition, constants)));
+  }
+  return f;
+}
+
+}  // namespace
+
+ModelFunctions build_model_functions(const pipeline::Derivation& d) {
+  const sym::Substitution constants = d.robot.constant_values();
+  std::vector<Column> base_columns;
+  for (const base::BaseParameter& b : d.base.list) base_columns.push_back(column_of_standard(d, b.kept, constants));
+
+  ModelFunctions out;
+  Builder base(d, base_columns);
+  out.functions.push_back(base.mass_matrix());
+  out.functions.push_back(base.coriolis_matrix());
+  out.functions.push_back(base.gravity_torque());
+  out.functions.push_back(base.friction_torque());
+  out.functions.push_back(base.inverse_dynamics());
+  out.functions.push_back(base.regressor(false));
+  out.functions.push_back(base.regressor(true));
+  out.functions.push_back(base.slotine_li_torque());
+  out.functions.push_back(base.adaptation_term());
+  out.functions.push_back(base.control_step());
+  out.functions.push_back(base_parameters_from_link(d));
+
+  std::vector<Column> standard_columns;
+  for (std::size_t l = 0; l < d.model.params.list.size(); ++l) {
+    standard_columns.push_back(column_of_standard(d, static_cast<int>(l), constants));
+  }
+  Builder standard(d, standard_columns);
+  out.standard_parameter_variants.push_back(standard.inverse_dynamics());
+  out.standard_parameter_variants.push_back(standard.mass_matrix());
+  out.standard_parameter_variants.push_back(standard.coriolis_matrix());
+  out.standard_parameter_variants.push_back(standard.gravity_torque());
+  out.standard_parameter_variants.push_back(standard.regressor(true));
+  return out;
+}
+
+}  // namespace dyncc::codegen
