@@ -5,6 +5,7 @@
 # Included by tests/CMakeLists.txt, so paths are relative to tests/.
 dyncc_add_test(dynamics_tests
   dynamics_newton_euler_test.cpp
+  dynamics_newton_euler_symbolic_test.cpp
   dynamics_planar_test.cpp
   dynamics_kraft_test.cpp
   dynamics_base_test.cpp

@@ -5,9 +5,14 @@
 // in float, at random states and random parameter values.
 #include <gtest/gtest.h>
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <Eigen/Dense>
 #include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <random>
 #include <string>
@@ -205,6 +210,70 @@ TEST(GeneratedModel, KraftMatchesDynccEvalJson) {
       EXPECT_NEAR(Y[i * K::kBaseParameters + b], j["Y"][i][b].get<double>(), 1e-12) << i << "," << b;
     }
   }
+}
+
+// `dyncc generate` as a command: deterministic, --check notices any change, bad input exits 2.
+struct ShellRun {
+  int exit_code = -1;
+  std::string out;
+};
+
+ShellRun shell(const std::string& command) {
+  ShellRun r;
+  FILE* pipe = popen((command + " 2>&1").c_str(), "r");
+  if (pipe == nullptr) return r;
+  char buffer[4096];
+  for (std::size_t got = 0; (got = fread(buffer, 1, sizeof buffer, pipe)) > 0;) r.out.append(buffer, got);
+  const int status = pclose(pipe);
+  if (WIFEXITED(status)) r.exit_code = WEXITSTATUS(status);
+  return r;
+}
+
+std::string slurp(const std::filesystem::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+TEST(GenerateCommand, CheckedInKraftIsCurrentAndOutputIsDeterministic) {
+  const std::string dyncc = std::string("'") + DYNCC_BINARY + "'";
+  const std::string in_source = std::string("cd '") + DYNCC_SOURCE_DIR + "' && ";
+  const ShellRun check = shell(in_source + dyncc + " generate robots/kraft.yaml -o generated/kraft --check");
+  EXPECT_EQ(check.exit_code, 0) << check.out;
+
+  const auto tmp = std::filesystem::temp_directory_path() / ("dyncc_generate_test_" + std::to_string(getpid()));
+  std::filesystem::remove_all(tmp);
+  // Twice into the same folder (the folder's name is part of the text): byte-identical.
+  const std::string out = std::string("'").append((tmp / "a").string()).append("'");
+  const ShellRun first = shell(in_source + dyncc + " generate robots/kraft.yaml -o " + out);
+  ASSERT_EQ(first.exit_code, 0) << first.out;
+  std::map<std::string, std::string> before;
+  for (const char* file : {"model.hpp", "model.cpp", "CMakeLists.txt", "REPORT.md", "report.json"}) {
+    before[file] = slurp(tmp / "a" / file);
+    EXPECT_FALSE(before[file].empty()) << file;
+  }
+  const ShellRun second = shell(in_source + dyncc + " generate robots/kraft.yaml -o " + out);
+  ASSERT_EQ(second.exit_code, 0) << second.out;
+  for (const auto& [file, text] : before) EXPECT_EQ(text, slurp(tmp / "a" / file)) << file << " differs between runs";
+  // One changed byte is a stale folder.
+  {
+    std::ofstream out(tmp / "a" / "model.cpp", std::ios::app);
+    out << " ";
+  }
+  const ShellRun stale =
+      shell(in_source + dyncc + " generate robots/kraft.yaml -o '" + (tmp / "a").string() + "' --check");
+  EXPECT_EQ(stale.exit_code, 1) << stale.out;
+  EXPECT_NE(stale.out.find("model.cpp"), std::string::npos) << stale.out;
+  std::filesystem::remove_all(tmp);
+}
+
+TEST(GenerateCommand, BadInputExitsTwoWithAMessage) {
+  const std::string dyncc = std::string("'") + DYNCC_BINARY + "'";
+  const ShellRun missing = shell(dyncc + " generate /nonexistent/robot.yaml -o /tmp/dyncc_never_written");
+  EXPECT_EQ(missing.exit_code, 2) << missing.out;
+  EXPECT_NE(missing.out.find("robot.yaml"), std::string::npos) << missing.out;
+  const ShellRun no_out = shell(dyncc + " generate '" + DYNCC_SOURCE_DIR + "/robots/kraft.yaml'");
+  EXPECT_EQ(no_out.exit_code, 2) << no_out.out;
+  EXPECT_FALSE(std::filesystem::exists("/tmp/dyncc_never_written"));
 }
 
 }  // namespace

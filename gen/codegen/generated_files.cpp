@@ -39,9 +39,9 @@ std::string parameter_list(const Function& f, const std::string& scalar) {
 
 std::string argument_sizes(const Function& f, const Sizes& sizes) {
   std::vector<std::string> items;
-  for (std::size_t k = 0; k < f.parameters.size(); ++k) {
-    items.push_back(fmt::format("{}[{}]", f.parameters[k], sizes.of(f.parameters[k])));
-  }
+  items.reserve(f.parameters.size());
+  for (const std::string& parameter : f.parameters)
+    items.push_back(fmt::format("{}[{}]", parameter, sizes.of(parameter)));
   return fmt::format("{}", fmt::join(items, ", "));
 }
 
@@ -51,6 +51,7 @@ std::string counts_text(const OpCounts& c) {
 
 std::string quoted_list(const std::vector<std::string>& items) {
   std::vector<std::string> q;
+  q.reserve(items.size());
   for (const auto& s : items) q.push_back(fmt::format("\"{}\"", s));
   return fmt::format("{}", fmt::join(q, ", "));
 }

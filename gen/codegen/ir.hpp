@@ -40,7 +40,7 @@ class Program {
  public:
   /// An input value named by its C expression (e.g. "q[0]"); the same name gives the same value.
   ValueId input(const std::string& c_name);
-  ValueId constant(double v);
+  ValueId constant(double c);
   ValueId add(ValueId a, ValueId b);
   ValueId sub(ValueId a, ValueId b);
   ValueId mul(ValueId a, ValueId b);

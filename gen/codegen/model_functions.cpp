@@ -2,7 +2,11 @@
 
 #include <fmt/format.h>
 
+#include <optional>
+#include <span>
+
 #include "codegen/lower.hpp"
+#include "dynamics/newton_euler.hpp"
 #include "sym/diff.hpp"
 #include "sym/substitute.hpp"
 
@@ -16,6 +20,7 @@ using sym::Expr;
 struct Column {
   std::vector<Expr> rows;
   bool rigid_body = true;
+  int standard = -1;  // the standard parameter this column belongs to
 };
 
 // Symbols standing for the signs of the rates in regressor expressions (sgn is not a sym
@@ -29,6 +34,7 @@ Column column_of_standard(const pipeline::Derivation& d, int standard, const sym
   const std::size_t n = m.q.size();
   const dyn::StandardParameter& sp = m.params.list[static_cast<std::size_t>(standard)];
   Column c;
+  c.standard = standard;
   c.rows.assign(n, Expr(0));
   if (sp.kind == dyn::StandardKind::FC || sp.kind == dyn::StandardKind::FV) {
     const auto k = static_cast<std::size_t>(sp.coordinate);
@@ -92,7 +98,7 @@ ValueId parameter_dot(Program& prog, Lowering& lower, const std::vector<Expr>& e
 class Builder {
  public:
   Builder(const pipeline::Derivation& d, std::vector<Column> columns)
-      : d_(d), m_(d.model), n_(d.model.q.size()), columns_(std::move(columns)) {
+      : robot_(d.robot), m_(d.model), n_(d.model.q.size()), columns_(std::move(columns)) {
     for (std::size_t b = 0; b < columns_.size(); ++b) {
       (columns_[b].rigid_body ? rigid_ : friction_).push_back(b);
     }
@@ -225,7 +231,88 @@ class Builder {
     return f;
   }
 
+  // ---- The same functions from the Newton-Euler torque (nullopt when the robot has none).
+
+  std::optional<Function> inverse_dynamics_newton_euler() {
+    const auto tau = newton_euler(m_.qd, m_.a, true);
+    if (!tau) return std::nullopt;
+    Function f = make_function("inverse_dynamics", "tau = H qdd + C qd + g + friction", {"q", "qd", "qdd", "p", "tau"},
+                               {false, false, false, false, true});
+    set_inputs(f, "qd", "qdd");
+    Lowering lower(f.program, inputs_.map);
+    for (std::size_t i = 0; i < n_; ++i) {
+      const ValueId friction = parameter_dot(f.program, lower, row(i), friction_);
+      f.program.set_output(fmt::format("tau[{}]", i), f.program.add(lower((*tau)[i]), friction));
+    }
+    return f;
+  }
+
+  std::optional<Function> gravity_newton_euler() {
+    const std::vector<Expr> zeros(n_, Expr(0));
+    const auto tau = newton_euler(zeros, zeros, true);
+    if (!tau) return std::nullopt;
+    Function f = make_function("gravity_torque", "tau_g(q): gravity torque", {"q", "p", "g"}, {false, false, true});
+    set_inputs(f, "v", "a");
+    Lowering lower(f.program, inputs_.map);
+    for (std::size_t i = 0; i < n_; ++i) f.program.set_output(fmt::format("g[{}]", i), lower((*tau)[i]));
+    return f;
+  }
+
+  std::optional<Function> mass_matrix_newton_euler() {
+    Function f = make_function("mass_matrix", "H(q): joint-space inertia, row-major n x n", {"q", "p", "H"},
+                               {false, false, true});
+    set_inputs(f, "v", "a");
+    Lowering lower(f.program, inputs_.map);
+    const std::vector<Expr> zeros(n_, Expr(0));
+    for (std::size_t j = 0; j < n_; ++j) {
+      std::vector<Expr> unit(n_, Expr(0));
+      unit[j] = Expr(1);
+      const auto column = newton_euler(zeros, unit, false);
+      if (!column) return std::nullopt;
+      for (std::size_t i = 0; i < n_; ++i) f.program.set_output(fmt::format("H[{}]", i * n_ + j), lower((*column)[i]));
+    }
+    return f;
+  }
+
+  std::optional<Function> identification_regressor_newton_euler() {
+    const auto tau = newton_euler(m_.qd, m_.a, true);
+    if (!tau) return std::nullopt;
+    Function f =
+        make_function("identification_regressor", "Y(q, qd, qdd): tau = Y p with v = qd, a = qdd, row-major n x r",
+                      {"q", "qd", "qdd", "Y"}, {false, false, false, true});
+    set_inputs(f, "qd", "qdd");
+    Lowering lower(f.program, inputs_.map);
+    const std::size_t r = columns_.size();
+    std::vector<Expr> parameters;
+    for (std::size_t b = 0; b < r; ++b) parameters.push_back(parameter_symbol(b));
+    for (std::size_t i = 0; i < n_; ++i) {
+      const std::vector<Expr> gradient = sym::gradient((*tau)[i], parameters);
+      for (std::size_t b = 0; b < r; ++b) {
+        const Expr entry = columns_[b].rigid_body ? gradient[b] : columns_[b].rows[i];
+        f.program.set_output(fmt::format("Y[{}]", i * r + b), lower(entry));
+      }
+    }
+    return f;
+  }
+
  private:
+  // The Newton-Euler torque with each column's standard parameter replaced by its p symbol and
+  // every other standard parameter by 0 (a dependent parameter's effect is carried by the
+  // base parameters it regroups into).
+  std::optional<std::vector<Expr>> newton_euler(std::span<const Expr> qd, std::span<const Expr> qdd, bool gravity) {
+    const auto tau = dyn::newton_euler_torque(robot_, m_, dyn::NewtonEulerInputs{qd, qdd, gravity});
+    if (!tau) return std::nullopt;
+    sym::Substitution to_columns;
+    for (const dyn::StandardParameter& sp : m_.params.list) to_columns[sp.symbol] = Expr(0);
+    for (std::size_t b = 0; b < columns_.size(); ++b) {
+      const auto l = static_cast<std::size_t>(columns_[b].standard);
+      to_columns[m_.params.list[l].symbol] = parameter_symbol(b);
+    }
+    std::vector<Expr> out;
+    for (const Expr e : *tau) out.push_back(sym::substitute(e, to_columns));
+    return out;
+  }
+
   void set_inputs(Function& f, const std::string& v_array, const std::string& a_array) {
     inputs_ = input_names(m_, columns_.size(), v_array, a_array);
     f.labels = inputs_.labels;
@@ -250,7 +337,7 @@ class Builder {
     }
   }
 
-  const pipeline::Derivation& d_;
+  const robot::RobotDescription& robot_;
   const dyn::DynamicModel& m_;
   std::size_t n_;
   std::vector<Column> columns_;
@@ -276,6 +363,15 @@ Function base_parameters_from_link(const pipeline::Derivation& d) {
   return f;
 }
 
+// The cheaper of two programs for the same function (fewer multiplications and additions;
+// the energy form when they tie).
+Function cheaper(Function energy_form, std::optional<Function> newton_euler_form) {
+  if (!newton_euler_form) return energy_form;
+  const OpCounts a = energy_form.program.count_operations();
+  const OpCounts b = newton_euler_form->program.count_operations();
+  return b.mul + b.add + b.div < a.mul + a.add + a.div ? std::move(*newton_euler_form) : std::move(energy_form);
+}
+
 }  // namespace
 
 ModelFunctions build_model_functions(const pipeline::Derivation& d) {
@@ -285,13 +381,13 @@ ModelFunctions build_model_functions(const pipeline::Derivation& d) {
 
   ModelFunctions out;
   Builder base(d, base_columns);
-  out.functions.push_back(base.mass_matrix());
+  out.functions.push_back(cheaper(base.mass_matrix(), base.mass_matrix_newton_euler()));
   out.functions.push_back(base.coriolis_matrix());
-  out.functions.push_back(base.gravity_torque());
+  out.functions.push_back(cheaper(base.gravity_torque(), base.gravity_newton_euler()));
   out.functions.push_back(base.friction_torque());
-  out.functions.push_back(base.inverse_dynamics());
+  out.functions.push_back(cheaper(base.inverse_dynamics(), base.inverse_dynamics_newton_euler()));
   out.functions.push_back(base.regressor(false));
-  out.functions.push_back(base.regressor(true));
+  out.functions.push_back(cheaper(base.regressor(true), base.identification_regressor_newton_euler()));
   out.functions.push_back(base.slotine_li_torque());
   out.functions.push_back(base.adaptation_term());
   out.functions.push_back(base.control_step());
@@ -302,11 +398,13 @@ ModelFunctions build_model_functions(const pipeline::Derivation& d) {
     standard_columns.push_back(column_of_standard(d, static_cast<int>(l), constants));
   }
   Builder standard(d, standard_columns);
-  out.standard_parameter_variants.push_back(standard.inverse_dynamics());
-  out.standard_parameter_variants.push_back(standard.mass_matrix());
+  out.standard_parameter_variants.push_back(
+      cheaper(standard.inverse_dynamics(), standard.inverse_dynamics_newton_euler()));
+  out.standard_parameter_variants.push_back(cheaper(standard.mass_matrix(), standard.mass_matrix_newton_euler()));
   out.standard_parameter_variants.push_back(standard.coriolis_matrix());
-  out.standard_parameter_variants.push_back(standard.gravity_torque());
-  out.standard_parameter_variants.push_back(standard.regressor(true));
+  out.standard_parameter_variants.push_back(cheaper(standard.gravity_torque(), standard.gravity_newton_euler()));
+  out.standard_parameter_variants.push_back(
+      cheaper(standard.regressor(true), standard.identification_regressor_newton_euler()));
   return out;
 }
 

@@ -66,7 +66,7 @@ template <typename S>
 void friction_torque(const S* qd, const S* v, const S* p, S* f);
 
 /// tau = H qdd + C qd + g + friction
-/// q[2], qd[2], qdd[2], p[6], tau[2]; per call: 37 mul, 24 add, 0 div, 4 sin/cos, 0 sqrt.
+/// q[2], qd[2], qdd[2], p[6], tau[2]; per call: 38 mul, 21 add, 0 div, 4 sin/cos, 0 sqrt.
 template <typename S>
 void inverse_dynamics(const S* q, const S* qd, const S* qdd, const S* p, S* tau);
 

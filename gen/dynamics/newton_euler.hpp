@@ -1,0 +1,41 @@
+// The same rigid-body torque as the Lagrangian model, by the recursive Newton-Euler algorithm,
+// symbolically: tau(q, qd, qdd) = H qdd + C qd + tau_g + rotor inertia, in the standard
+// parameter symbols.
+//
+// Why a second formulation in the generator: the energy route gives H, C and the Christoffel
+// symbols the proofs need, but its expressions are sums over all link pairs; Newton-Euler
+// shares each link's velocities, accelerations and forces between all joints, so inverse
+// dynamics, gravity and the identification regressor come out several times smaller as code.
+// The code generator lowers both and emits the cheaper program; the tests check that the two
+// agree to rounding.
+//
+// Velocities, accelerations, forces and moments are propagated in link coordinates (Craig's
+// outward/inward recursion, for both D-H conventions, revolute and prismatic joints). Closed
+// chains listed as a tree with joint variables that are affine in the coordinates
+// (theta = offset + sum_k c_k q_k, as the Kraft arm's parallelogram) are covered exactly: the
+// generalised force is tau_k = sum_links c_{link,k} * joint force (virtual work). Other joint
+// maps are not affine and get no Newton-Euler form.
+#pragma once
+
+#include <optional>
+#include <span>
+#include <vector>
+
+#include "dynamics/model.hpp"
+#include "robot/description.hpp"
+
+namespace dyncc::dyn {
+
+struct NewtonEulerInputs {
+  std::span<const sym::Expr> qd;   // joint-space rates
+  std::span<const sym::Expr> qdd;  // joint-space accelerations
+  bool gravity = true;             // include tau_g (the base accelerates upwards by -g)
+};
+
+/// tau per coordinate, in the model's coordinates and standard parameter symbols, with the
+/// description's constants substituted by their values. nullopt when a joint variable is not
+/// affine in the coordinates.
+std::optional<std::vector<sym::Expr>> newton_euler_torque(const robot::RobotDescription& robot,
+                                                          const DynamicModel& model, const NewtonEulerInputs& in);
+
+}  // namespace dyncc::dyn
