@@ -8,6 +8,7 @@
 #include <random>
 
 #include "kraft/model.hpp"
+#include "panda/model.hpp"
 #include "puma560/model.hpp"
 
 namespace {
@@ -113,6 +114,7 @@ struct Inputs {
 DYNCC_BENCH_MODEL(kraft_right, kraft, double)
 DYNCC_BENCH_MODEL(kraft_right, kraft, float)
 DYNCC_BENCH_MODEL(puma560, puma560, double)
+DYNCC_BENCH_MODEL(panda, panda, double)
 
 }  // namespace
 

@@ -21,6 +21,7 @@
 #include "base/base_parameters.hpp"
 #include "dynamics_support.hpp"
 #include "kraft/model.hpp"
+#include "panda/model.hpp"
 #include "planar_2link/model.hpp"
 #include "puma560/model.hpp"
 
@@ -169,12 +170,14 @@ void check_generated_model(const std::string& robot_file) {
 DYNCC_FORWARD(kraft_right)
 DYNCC_FORWARD(planar_2link)
 DYNCC_FORWARD(puma560)
+DYNCC_FORWARD(panda)
 
 TEST(GeneratedModel, KraftAgreesWithTheDerivation) { check_generated_model<kraft_right_model>("kraft.yaml"); }
 TEST(GeneratedModel, Planar2LinkAgreesWithTheDerivation) {
   check_generated_model<planar_2link_model>("planar_2link.yaml");
 }
 TEST(GeneratedModel, Puma560AgreesWithTheDerivation) { check_generated_model<puma560_model>("puma560.yaml"); }
+TEST(GeneratedModel, PandaAgreesWithTheDerivation) { check_generated_model<panda_model>("panda.yaml"); }
 
 // The literal promise of the issue: the generated code reproduces what `dyncc eval` prints.
 TEST(GeneratedModel, KraftMatchesDynccEvalJson) {

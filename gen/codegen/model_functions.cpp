@@ -295,7 +295,137 @@ class Builder {
     return f;
   }
 
+  // H a + C(q, qd) v + g with the Christoffel C, from two Newton-Euler passes. The velocity
+  // terms N(w) of inverse dynamics are a quadratic form whose symmetric bilinear form is
+  // exactly the Christoffel one, Gamma(w, w) = N(w), so by polarisation
+  //   C(qd) v = Gamma(qd, v) = N((qd + v)/2) - N((qd - v)/2)
+  // and the torque is RNEA(q, (qd + v)/2, a, gravity) - RNEA(q, (qd - v)/2, 0, no gravity).
+  std::optional<std::vector<Expr>> slotine_li_rigid_torque() {
+    std::vector<Expr> half_sum, half_difference;
+    const sym::Rational half(1, 2);
+    for (std::size_t k = 0; k < n_; ++k) {
+      half_sum.push_back(Expr(half) * (m_.qd[k] + m_.v[k]));
+      half_difference.push_back(Expr(half) * (m_.qd[k] - m_.v[k]));
+    }
+    const std::vector<Expr> zeros(n_, Expr(0));
+    const auto with_accelerations = newton_euler(half_sum, m_.a, true);
+    const auto velocity_only = newton_euler(half_difference, zeros, false);
+    if (!with_accelerations || !velocity_only) return std::nullopt;
+    std::vector<Expr> tau;
+    for (std::size_t i = 0; i < n_; ++i) tau.push_back((*with_accelerations)[i] - (*velocity_only)[i]);
+    return tau;
+  }
+
+  std::optional<Function> slotine_li_torque_newton_euler() {
+    const auto rigid = slotine_li_rigid_torque();
+    if (!rigid) return std::nullopt;
+    Function f = make_function("slotine_li_torque", "tau = Y(q, qd, v, a) p without forming Y",
+                               {"q", "qd", "v", "a", "p", "tau"}, {false, false, false, false, false, true});
+    set_inputs(f, "v", "a");
+    Lowering lower(f.program, inputs_.map);
+    emit_torque_from(f, lower, *rigid);
+    return f;
+  }
+
+  std::optional<Function> coriolis_matrix_newton_euler() {
+    const auto rigid = slotine_li_rigid_torque();
+    if (!rigid) return std::nullopt;
+    Function f = make_function("coriolis_matrix", "C(q, qd): Christoffel form (Hdot - 2C skew), row-major n x n",
+                               {"q", "qd", "p", "C"}, {false, false, false, true});
+    set_inputs(f, "v", "a");
+    Lowering lower(f.program, inputs_.map);
+    for (std::size_t j = 0; j < n_; ++j) {
+      sym::Differentiator by_v(m_.v[j]);
+      sym::Substitution at_rest;
+      for (std::size_t k = 0; k < n_; ++k) {
+        at_rest[m_.v[k]] = Expr(0);
+        at_rest[m_.a[k]] = Expr(0);
+      }
+      for (std::size_t i = 0; i < n_; ++i) {
+        f.program.set_output(fmt::format("C[{}]", i * n_ + j), lower(sym::substitute(by_v((*rigid)[i]), at_rest)));
+      }
+    }
+    return f;
+  }
+
+  std::optional<Function> regressor_newton_euler() {
+    const auto rigid = slotine_li_rigid_torque();
+    if (!rigid) return std::nullopt;
+    Function f = make_function("regressor", "Y(q, qd, v, a): Y p = H a + C v + g + FC sgn(qd) + FV v, n x r",
+                               {"q", "qd", "v", "a", "Y"}, {false, false, false, false, true});
+    set_inputs(f, "v", "a");
+    Lowering lower(f.program, inputs_.map);
+    const std::size_t r = columns_.size();
+    const std::vector<Expr> parameters = parameter_symbols();
+    for (std::size_t i = 0; i < n_; ++i) {
+      const std::vector<Expr> gradient = sym::gradient((*rigid)[i], parameters);
+      for (std::size_t b = 0; b < r; ++b) {
+        const Expr entry = columns_[b].rigid_body ? gradient[b] : columns_[b].rows[i];
+        f.program.set_output(fmt::format("Y[{}]", i * r + b), lower(entry));
+      }
+    }
+    return f;
+  }
+
+  std::optional<Function> adaptation_term_newton_euler() {
+    const auto rigid = slotine_li_rigid_torque();
+    if (!rigid) return std::nullopt;
+    Function f = make_function("adaptation_term", "YTe = Y(q, qd, v, a)^T e without forming Y",
+                               {"q", "qd", "v", "a", "e", "YTe"}, {false, false, false, false, false, true});
+    set_inputs(f, "v", "a");
+    Lowering lower(f.program, inputs_.map);
+    emit_adaptation_from(f, lower, *rigid);
+    return f;
+  }
+
+  std::optional<Function> control_step_newton_euler() {
+    const auto rigid = slotine_li_rigid_torque();
+    if (!rigid) return std::nullopt;
+    Function f = make_function("control_step", "tau = Y p and YTe = Y^T e in one pass, sharing every subexpression",
+                               {"q", "qd", "v", "a", "p", "e", "tau", "YTe"},
+                               {false, false, false, false, false, false, true, true});
+    set_inputs(f, "v", "a");
+    Lowering lower(f.program, inputs_.map);
+    emit_torque_from(f, lower, *rigid);
+    emit_adaptation_from(f, lower, *rigid);
+    return f;
+  }
+
  private:
+  [[nodiscard]] std::vector<Expr> parameter_symbols() const {
+    std::vector<Expr> out;
+    for (std::size_t b = 0; b < columns_.size(); ++b) out.push_back(parameter_symbol(b));
+    return out;
+  }
+
+  // tau = rigid-body torque (in the p symbols) + friction columns.
+  void emit_torque_from(Function& f, Lowering& lower, const std::vector<Expr>& rigid) {
+    for (std::size_t i = 0; i < n_; ++i) {
+      const ValueId friction = parameter_dot(f.program, lower, row(i), friction_);
+      f.program.set_output(fmt::format("tau[{}]", i), f.program.add(lower(rigid[i]), friction));
+    }
+  }
+
+  // Y^T e = d(e . tau)/dp: one reverse sweep over the torque's expression graph gives every
+  // parameter's entry at once (the adjoint method), without forming Y.
+  void emit_adaptation_from(Function& f, Lowering& lower, const std::vector<Expr>& rigid) {
+    Expr weighted(0);
+    for (std::size_t i = 0; i < n_; ++i) weighted += weight_symbol(i) * rigid[i];
+    const std::vector<Expr> gradient = sym::gradient(weighted, parameter_symbols());
+    for (std::size_t b = 0; b < columns_.size(); ++b) {
+      ValueId acc = f.program.constant(0.0);
+      if (columns_[b].rigid_body) {
+        acc = lower(gradient[b]);
+      } else {
+        for (std::size_t i = 0; i < n_; ++i) {
+          if (columns_[b].rows[i].is_zero()) continue;
+          acc = f.program.add(acc, f.program.mul(lower(columns_[b].rows[i]), lower(weight_symbol(i))));
+        }
+      }
+      f.program.set_output(fmt::format("YTe[{}]", b), acc);
+    }
+  }
+
   // The Newton-Euler torque with each column's standard parameter replaced by its p symbol and
   // every other standard parameter by 0 (a dependent parameter's effect is carried by the
   // base parameters it regroups into).
@@ -382,15 +512,15 @@ ModelFunctions build_model_functions(const pipeline::Derivation& d) {
   ModelFunctions out;
   Builder base(d, base_columns);
   out.functions.push_back(cheaper(base.mass_matrix(), base.mass_matrix_newton_euler()));
-  out.functions.push_back(base.coriolis_matrix());
+  out.functions.push_back(cheaper(base.coriolis_matrix(), base.coriolis_matrix_newton_euler()));
   out.functions.push_back(cheaper(base.gravity_torque(), base.gravity_newton_euler()));
   out.functions.push_back(base.friction_torque());
   out.functions.push_back(cheaper(base.inverse_dynamics(), base.inverse_dynamics_newton_euler()));
-  out.functions.push_back(base.regressor(false));
+  out.functions.push_back(cheaper(base.regressor(false), base.regressor_newton_euler()));
   out.functions.push_back(cheaper(base.regressor(true), base.identification_regressor_newton_euler()));
-  out.functions.push_back(base.slotine_li_torque());
-  out.functions.push_back(base.adaptation_term());
-  out.functions.push_back(base.control_step());
+  out.functions.push_back(cheaper(base.slotine_li_torque(), base.slotine_li_torque_newton_euler()));
+  out.functions.push_back(cheaper(base.adaptation_term(), base.adaptation_term_newton_euler()));
+  out.functions.push_back(cheaper(base.control_step(), base.control_step_newton_euler()));
   out.functions.push_back(base_parameters_from_link(d));
 
   std::vector<Column> standard_columns;
@@ -401,7 +531,8 @@ ModelFunctions build_model_functions(const pipeline::Derivation& d) {
   out.standard_parameter_variants.push_back(
       cheaper(standard.inverse_dynamics(), standard.inverse_dynamics_newton_euler()));
   out.standard_parameter_variants.push_back(cheaper(standard.mass_matrix(), standard.mass_matrix_newton_euler()));
-  out.standard_parameter_variants.push_back(standard.coriolis_matrix());
+  out.standard_parameter_variants.push_back(
+      cheaper(standard.coriolis_matrix(), standard.coriolis_matrix_newton_euler()));
   out.standard_parameter_variants.push_back(cheaper(standard.gravity_torque(), standard.gravity_newton_euler()));
   out.standard_parameter_variants.push_back(
       cheaper(standard.regressor(true), standard.identification_regressor_newton_euler()));

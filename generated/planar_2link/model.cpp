@@ -26,18 +26,17 @@ void mass_matrix(const S* q, const S* p, S* H) {
 }
 
 // C(q, qd): Christoffel form (Hdot - 2C skew), row-major n x n
-// 14 mul, 4 add, 0 div, 4 sin/cos, 0 sqrt
+// 11 mul, 3 add, 0 div, 3 sin/cos, 0 sqrt
 template <typename S>
 void coriolis_matrix(const S* q, const S* qd, const S* p, S* C) {
-  const S c_q2 = std::cos(q[1]);
-  const S t0 = c_q2 * S(4);
+  const S t0 = qd[0] + qd[1];
   const S c_q1 = std::cos(q[0]);
   const S s_q1 = std::sin(q[0]);
+  const S t1 = c_q1 * c_q1 + s_q1 * s_q1;
   const S s_q2 = std::sin(q[1]);
-  const S t1 = (t0 - (t0 + (c_q1 * c_q1 + s_q1 * s_q1) * S(5))) * s_q2;
-  C[0] = t1 * qd[1] * S(0.2) * p[2];
-  C[2] = p[2] * (t1 * qd[0] * S(-0.2));
-  C[1] = p[2] * (S(0.2) * (t1 * (qd[1] + qd[0])));
+  C[0] = (qd[0] - t0) * p[2] * t1 * s_q2;
+  C[2] = s_q2 * (t1 * (qd[0] * p[2]));
+  C[1] = -(s_q2 * (t1 * (t0 * p[2])));
   C[3] = S(0);
 }
 

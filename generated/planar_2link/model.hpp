@@ -51,7 +51,7 @@ template <typename S>
 void mass_matrix(const S* q, const S* p, S* H);
 
 /// C(q, qd): Christoffel form (Hdot - 2C skew), row-major n x n
-/// q[2], qd[2], p[6], C[4]; per call: 14 mul, 4 add, 0 div, 4 sin/cos, 0 sqrt.
+/// q[2], qd[2], p[6], C[4]; per call: 11 mul, 3 add, 0 div, 3 sin/cos, 0 sqrt.
 template <typename S>
 void coriolis_matrix(const S* q, const S* qd, const S* p, S* C);
 

@@ -97,7 +97,7 @@ template <typename S>
 void mass_matrix(const S* q, const S* p, S* H);
 
 /// C(q, qd): Christoffel form (Hdot - 2C skew), row-major n x n
-/// q[6], qd[6], p[52], C[36]; per call: 3014 mul, 2337 add, 0 div, 10 sin/cos, 0 sqrt.
+/// q[6], qd[6], p[52], C[36]; per call: 1201 mul, 882 add, 0 div, 10 sin/cos, 0 sqrt.
 template <typename S>
 void coriolis_matrix(const S* q, const S* qd, const S* p, S* C);
 
@@ -117,7 +117,7 @@ template <typename S>
 void inverse_dynamics(const S* q, const S* qd, const S* qdd, const S* p, S* tau);
 
 /// Y(q, qd, v, a): Y p = H a + C v + g + FC sgn(qd) + FV v, n x r
-/// q[6], qd[6], v[6], a[6], Y[312]; per call: 2306 mul, 1779 add, 0 div, 10 sin/cos, 0 sqrt.
+/// q[6], qd[6], v[6], a[6], Y[312]; per call: 1190 mul, 773 add, 0 div, 10 sin/cos, 0 sqrt.
 template <typename S>
 void regressor(const S* q, const S* qd, const S* v, const S* a, S* Y);
 
@@ -127,17 +127,17 @@ template <typename S>
 void identification_regressor(const S* q, const S* qd, const S* qdd, S* Y);
 
 /// tau = Y(q, qd, v, a) p without forming Y
-/// q[6], qd[6], v[6], a[6], p[52], tau[6]; per call: 2442 mul, 1928 add, 0 div, 10 sin/cos, 0 sqrt.
+/// q[6], qd[6], v[6], a[6], p[52], tau[6]; per call: 817 mul, 611 add, 0 div, 10 sin/cos, 0 sqrt.
 template <typename S>
 void slotine_li_torque(const S* q, const S* qd, const S* v, const S* a, const S* p, S* tau);
 
 /// YTe = Y(q, qd, v, a)^T e without forming Y
-/// q[6], qd[6], v[6], a[6], e[6], YTe[52]; per call: 2464 mul, 1882 add, 0 div, 10 sin/cos, 0 sqrt.
+/// q[6], qd[6], v[6], a[6], e[6], YTe[52]; per call: 712 mul, 432 add, 0 div, 10 sin/cos, 0 sqrt.
 template <typename S>
 void adaptation_term(const S* q, const S* qd, const S* v, const S* a, const S* e, S* YTe);
 
 /// tau = Y p and YTe = Y^T e in one pass, sharing every subexpression
-/// q[6], qd[6], v[6], a[6], p[52], e[6], tau[6], YTe[52]; per call: 2597 mul, 2031 add, 0 div, 10 sin/cos, 0 sqrt.
+/// q[6], qd[6], v[6], a[6], p[52], e[6], tau[6], YTe[52]; per call: 1277 mul, 876 add, 0 div, 10 sin/cos, 0 sqrt.
 template <typename S>
 void control_step(const S* q, const S* qd, const S* v, const S* a, const S* p, const S* e, S* tau, S* YTe);
 
