@@ -1,4 +1,5 @@
-// The generator's symbolic recursive Newton-Euler torque (gen/dynamics/newton_euler.hpp, which
+// The generator's symbolic recursive Newton-Euler torque and composite-rigid-body mass matrix
+// (gen/dynamics/newton_euler.hpp, which
 // the code generator emits when it is the cheaper program) against the Lagrangian model, for
 // every shipped robot: standard and modified D-H, and the Kraft arm's closed chain through its
 // affine joint map. Evaluated numerically at random states with nominal parameter values.
@@ -16,7 +17,7 @@ namespace {
 
 class SymbolicNewtonEuler : public ::testing::TestWithParam<std::filesystem::path> {};
 
-TEST_P(SymbolicNewtonEuler, EqualsTheLagrangianTorqueAndGravity) {
+TEST_P(SymbolicNewtonEuler, EqualsTheLagrangianTorqueGravityAndMassMatrix) {
   const auto d = derive_file(GetParam());
   ASSERT_TRUE(d);
   const dyn::DynamicModel& m = d->model;
@@ -26,6 +27,8 @@ TEST_P(SymbolicNewtonEuler, EqualsTheLagrangianTorqueAndGravity) {
   const std::vector<sym::Expr> zeros(n, sym::Expr(0));
   const auto gravity = dyn::newton_euler_torque(d->robot, m, dyn::NewtonEulerInputs{zeros, zeros, true});
   ASSERT_TRUE(gravity.has_value());
+  const auto mass_matrix = dyn::composite_rigid_body_mass_matrix(d->robot, m);
+  ASSERT_TRUE(mass_matrix.has_value());
 
   const Eigen::VectorXd standard = d->numeric->nominal_standard_values();
   for (std::uint64_t seed = 0; seed < 10; ++seed) {
@@ -46,6 +49,11 @@ TEST_P(SymbolicNewtonEuler, EqualsTheLagrangianTorqueAndGravity) {
       const auto i = static_cast<Eigen::Index>(k);
       EXPECT_NEAR(sym::evaluate((*tau)[k], values), rigid[i], 1e-10 * (1 + rigid.norm())) << "joint " << k + 1;
       EXPECT_NEAR(sym::evaluate((*gravity)[k], values), ev.g[i], 1e-10 * (1 + ev.g.norm())) << "joint " << k + 1;
+      for (std::size_t j = 0; j < n; ++j) {
+        EXPECT_NEAR(sym::evaluate((*mass_matrix)[k][j], values), ev.H(i, static_cast<Eigen::Index>(j)),
+                    1e-10 * (1 + ev.H.norm()))
+            << "H(" << k + 1 << "," << j + 1 << ")";
+      }
     }
   }
 }

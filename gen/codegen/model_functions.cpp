@@ -274,6 +274,22 @@ class Builder {
     return f;
   }
 
+  std::optional<Function> mass_matrix_composite() {
+    const auto H = dyn::composite_rigid_body_mass_matrix(robot_, m_);
+    if (!H) return std::nullopt;
+    Function f = make_function("mass_matrix", "H(q): joint-space inertia, row-major n x n", {"q", "p", "H"},
+                               {false, false, true});
+    set_inputs(f, "v", "a");
+    Lowering lower(f.program, inputs_.map);
+    const sym::Substitution to_columns = standard_to_columns();
+    for (std::size_t i = 0; i < n_; ++i) {
+      for (std::size_t j = 0; j < n_; ++j) {
+        f.program.set_output(fmt::format("H[{}]", i * n_ + j), lower(sym::substitute((*H)[i][j], to_columns)));
+      }
+    }
+    return f;
+  }
+
   std::optional<Function> identification_regressor_newton_euler() {
     const auto tau = newton_euler(m_.qd, m_.a, true);
     if (!tau) return std::nullopt;
@@ -392,6 +408,16 @@ class Builder {
   }
 
  private:
+  [[nodiscard]] sym::Substitution standard_to_columns() const {
+    sym::Substitution to_columns;
+    for (const dyn::StandardParameter& sp : m_.params.list) to_columns[sp.symbol] = Expr(0);
+    for (std::size_t b = 0; b < columns_.size(); ++b) {
+      const auto l = static_cast<std::size_t>(columns_[b].standard);
+      to_columns[m_.params.list[l].symbol] = parameter_symbol(b);
+    }
+    return to_columns;
+  }
+
   [[nodiscard]] std::vector<Expr> parameter_symbols() const {
     std::vector<Expr> out;
     for (std::size_t b = 0; b < columns_.size(); ++b) out.push_back(parameter_symbol(b));
@@ -432,12 +458,7 @@ class Builder {
   std::optional<std::vector<Expr>> newton_euler(std::span<const Expr> qd, std::span<const Expr> qdd, bool gravity) {
     const auto tau = dyn::newton_euler_torque(robot_, m_, dyn::NewtonEulerInputs{qd, qdd, gravity});
     if (!tau) return std::nullopt;
-    sym::Substitution to_columns;
-    for (const dyn::StandardParameter& sp : m_.params.list) to_columns[sp.symbol] = Expr(0);
-    for (std::size_t b = 0; b < columns_.size(); ++b) {
-      const auto l = static_cast<std::size_t>(columns_[b].standard);
-      to_columns[m_.params.list[l].symbol] = parameter_symbol(b);
-    }
+    const sym::Substitution to_columns = standard_to_columns();
     std::vector<Expr> out;
     for (const Expr e : *tau) out.push_back(sym::substitute(e, to_columns));
     return out;
@@ -494,7 +515,7 @@ Function base_parameters_from_link(const pipeline::Derivation& d) {
 }
 
 // The cheaper of two programs for the same function (fewer multiplications and additions;
-// the energy form when they tie).
+// the first when they tie).
 Function cheaper(Function energy_form, std::optional<Function> newton_euler_form) {
   if (!newton_euler_form) return energy_form;
   const OpCounts a = energy_form.program.count_operations();
@@ -511,7 +532,8 @@ ModelFunctions build_model_functions(const pipeline::Derivation& d) {
 
   ModelFunctions out;
   Builder base(d, base_columns);
-  out.functions.push_back(cheaper(base.mass_matrix(), base.mass_matrix_newton_euler()));
+  out.functions.push_back(
+      cheaper(cheaper(base.mass_matrix(), base.mass_matrix_newton_euler()), base.mass_matrix_composite()));
   out.functions.push_back(cheaper(base.coriolis_matrix(), base.coriolis_matrix_newton_euler()));
   out.functions.push_back(cheaper(base.gravity_torque(), base.gravity_newton_euler()));
   out.functions.push_back(base.friction_torque());
@@ -530,7 +552,8 @@ ModelFunctions build_model_functions(const pipeline::Derivation& d) {
   Builder standard(d, standard_columns);
   out.standard_parameter_variants.push_back(
       cheaper(standard.inverse_dynamics(), standard.inverse_dynamics_newton_euler()));
-  out.standard_parameter_variants.push_back(cheaper(standard.mass_matrix(), standard.mass_matrix_newton_euler()));
+  out.standard_parameter_variants.push_back(
+      cheaper(cheaper(standard.mass_matrix(), standard.mass_matrix_newton_euler()), standard.mass_matrix_composite()));
   out.standard_parameter_variants.push_back(
       cheaper(standard.coriolis_matrix(), standard.coriolis_matrix_newton_euler()));
   out.standard_parameter_variants.push_back(cheaper(standard.gravity_torque(), standard.gravity_newton_euler()));

@@ -136,4 +136,132 @@ std::optional<std::vector<Expr>> newton_euler_torque(const robot::RobotDescripti
   return tau;
 }
 
+namespace {
+
+// A link's frame relative to its parent and its joint, for the composite-rigid-body algorithm.
+struct LinkJoint {
+  Mat3 rotation;  // link -> parent
+  Vec3 origin;    // link origin in parent coordinates
+  Vec3 axis;      // joint axis, link coordinates
+  Vec3 lever;     // from the point the joint turns about to the link origin, link coordinates
+  bool prismatic = false;
+  std::vector<Expr> coefficient;
+};
+
+// [a]x [b]x applied to v, i.e. a x (b x v).
+Vec3 cross_cross(const Vec3& a, const Vec3& b, const Vec3& v) { return kin::cross(a, kin::cross(b, v)); }
+
+// Inertia about the parent's origin, in parent axes, of a body with mass m, first moment h
+// and inertia I about its own origin (own axes), whose origin sits at p:  R I R^T - m [p]x^2
+// - [p]x [h']x - [h']x [p]x with h' = R h. Built column by column from unit vectors.
+Mat3 shifted_inertia(const Mat3& R, const Mat3& I, Expr m, const Vec3& h_parent, const Vec3& p) {
+  Mat3 out;
+  for (std::size_t col = 0; col < 3; ++col) {
+    Vec3 e = kin::zero_vec();
+    e[col] = Expr(1);
+    const Vec3 rotated = times(R, times(I, kin::transpose_times(R, e)));
+    const Vec3 column = kin::operator-(kin::operator-(kin::operator-(rotated, scale(m, cross_cross(p, p, e))),
+                                                      cross_cross(p, h_parent, e)),
+                                       cross_cross(h_parent, p, e));
+    for (std::size_t row = 0; row < 3; ++row) out[row][col] = column[row];
+  }
+  return out;
+}
+
+Expr joint_force(const LinkJoint& J, const Vec3& F, const Vec3& N) {
+  if (J.prismatic) return kin::dot(J.axis, F);
+  return kin::dot(J.axis, add3(N, kin::cross(J.lever, F)));
+}
+
+}  // namespace
+
+std::optional<Matrix> composite_rigid_body_mass_matrix(const robot::RobotDescription& robot,
+                                                       const DynamicModel& model) {
+  const std::size_t n = model.q.size();
+  const std::size_t count = robot.links.size();
+  const sym::Substitution constants = robot.constant_values();
+  std::vector<LinkJoint> joints(count);
+  std::vector<Expr> mass(count);
+  std::vector<Vec3> moment(count);
+  std::vector<Mat3> inertia(count);
+  for (std::size_t i = 0; i < count; ++i) {
+    const robot::Link& link = robot.links[i];
+    LinkJoint& J = joints[i];
+    J.prismatic = link.joint == robot::JointType::Prismatic;
+    const Expr variable = sym::substitute(J.prismatic ? link.d : link.theta, constants);
+    for (std::size_t k = 0; k < n; ++k) {
+      const Expr c = sym::diff(variable, model.q[k]);
+      if (!c.is_number()) return std::nullopt;
+      J.coefficient.push_back(c);
+    }
+    const kin::RelativeFrame rel =
+        kin::dh_frame(robot.convention, sym::substitute(link.a, constants), sym::substitute(link.alpha, constants),
+                      sym::substitute(link.d, constants), sym::substitute(link.theta, constants));
+    J.rotation = rel.rotation;
+    J.origin = rel.origin;
+    J.axis = kin::transpose_times(rel.rotation, rel.joint_axis);
+    J.lever = rel.axis_through_child_origin ? kin::zero_vec() : kin::transpose_times(rel.rotation, rel.origin);
+    const auto& of = model.params.of_link[i];
+    auto P = [&](StandardKind kind) { return model.params.symbol_or_zero(of[static_cast<std::size_t>(kind)]); };
+    mass[i] = P(StandardKind::M);
+    moment[i] = {P(StandardKind::MX), P(StandardKind::MY), P(StandardKind::MZ)};
+    inertia[i] = {Vec3{P(StandardKind::XX), P(StandardKind::XY), P(StandardKind::XZ)},
+                  Vec3{P(StandardKind::XY), P(StandardKind::YY), P(StandardKind::YZ)},
+                  Vec3{P(StandardKind::XZ), P(StandardKind::YZ), P(StandardKind::ZZ)}};
+  }
+  // ---- composite bodies, leaf to root (children come after their parents)
+  for (std::size_t i = count; i-- > 0;) {
+    const int parent = robot.links[i].parent;
+    if (parent < 0) continue;
+    const auto p = static_cast<std::size_t>(parent);
+    const LinkJoint& J = joints[i];
+    const Vec3 h_parent = times(J.rotation, moment[i]);
+    const Mat3 shifted = shifted_inertia(J.rotation, inertia[i], mass[i], h_parent, J.origin);
+    for (std::size_t r = 0; r < 3; ++r) {
+      for (std::size_t c = 0; c < 3; ++c) inertia[p][r][c] += shifted[r][c];
+    }
+    moment[p] = add3(moment[p], add3(scale(mass[i], J.origin), h_parent));
+    mass[p] += mass[i];
+  }
+  // ---- H_tree[k][j]: the force a unit acceleration of joint j needs, at every ancestor k
+  std::vector<std::vector<Expr>> tree(count, std::vector<Expr>(count, Expr(0)));
+  for (std::size_t j = 0; j < count; ++j) {
+    const LinkJoint& J = joints[j];
+    // Unit joint acceleration of the composite body j, at rest: angular z (revolute) and
+    // linear acceleration of the origin z x lever, or linear z (prismatic).
+    const Vec3 angular = J.prismatic ? kin::zero_vec() : J.axis;
+    const Vec3 linear = J.prismatic ? J.axis : kin::cross(J.axis, J.lever);
+    Vec3 F = add3(scale(mass[j], linear), kin::cross(angular, moment[j]));
+    Vec3 N = add3(times(inertia[j], angular), kin::cross(moment[j], linear));
+    tree[j][j] = joint_force(J, F, N);
+    for (std::size_t k = j; robot.links[k].parent >= 0;) {
+      const LinkJoint& child = joints[k];
+      const Vec3 F_parent = times(child.rotation, F);
+      N = add3(times(child.rotation, N), kin::cross(child.origin, F_parent));
+      F = F_parent;
+      k = static_cast<std::size_t>(robot.links[k].parent);
+      tree[k][j] = joint_force(joints[k], F, N);
+      tree[j][k] = tree[k][j];
+    }
+  }
+  // ---- onto the coordinates: H = G^T H_tree G + rotor inertias
+  Matrix H(n, std::vector<Expr>(n, Expr(0)));
+  for (std::size_t a = 0; a < n; ++a) {
+    for (std::size_t b = a; b < n; ++b) {
+      Expr sum(0);
+      for (std::size_t k = 0; k < count; ++k) {
+        if (joints[k].coefficient[a].is_zero()) continue;
+        for (std::size_t j = 0; j < count; ++j) {
+          if (joints[j].coefficient[b].is_zero() || tree[k][j].is_zero()) continue;
+          sum += joints[k].coefficient[a] * joints[j].coefficient[b] * tree[k][j];
+        }
+      }
+      if (a == b) sum += model.params.symbol_or_zero(model.params.rotor_of[a]);
+      H[a][b] = sum;
+      H[b][a] = sum;
+    }
+  }
+  return H;
+}
+
 }  // namespace dyncc::dyn

@@ -38,4 +38,10 @@ struct NewtonEulerInputs {
 std::optional<std::vector<sym::Expr>> newton_euler_torque(const robot::RobotDescription& robot,
                                                           const DynamicModel& model, const NewtonEulerInputs& in);
 
+/// H(q) by the composite-rigid-body algorithm (each subtree's mass, first moment and inertia
+/// about its root's origin, accumulated leaf to root; the force a unit acceleration of a joint
+/// needs, carried up to every ancestor joint), mapped onto the coordinates as G^T H_tree G
+/// plus the rotor inertias. Same conditions and parameter symbols as newton_euler_torque.
+std::optional<Matrix> composite_rigid_body_mass_matrix(const robot::RobotDescription& robot, const DynamicModel& model);
+
 }  // namespace dyncc::dyn

@@ -7,22 +7,21 @@
 namespace dyncc::generated::planar_2link {
 
 // H(q): joint-space inertia, row-major n x n
-// 18 mul, 11 add, 0 div, 4 sin/cos, 0 sqrt
+// 15 mul, 11 add, 0 div, 4 sin/cos, 0 sqrt
 template <typename S>
 void mass_matrix(const S* q, const S* p, S* H) {
+  const S s_q2 = std::sin(q[1]);
+  const S t0 = s_q2 * s_q2;
+  const S c_q2 = std::cos(q[1]);
+  const S t1 = t0 + c_q2 * c_q2;
   const S c_q1 = std::cos(q[0]);
   const S s_q1 = std::sin(q[0]);
-  const S t0 = c_q1 * c_q1 + s_q1 * s_q1;
-  const S c_q2 = std::cos(q[1]);
-  const S t1 = t0 * S(5) + c_q2 * S(4);
-  const S s_q2 = std::sin(q[1]);
-  const S t2 = s_q2 * s_q2;
-  const S t3 = t2 * S(1.6);
-  const S t4 = p[3] + p[2] * (t3 + c_q2 * (c_q2 * S(0.8) + t1 * S(0.2)));
-  H[0] = t0 * S(2) * p[0] + p[1] + (c_q2 * t1 * S(0.4) + t3) * p[2] + p[3];
-  H[2] = t4;
-  H[1] = t4;
-  H[3] = p[3] + p[2] * (S(1.6) * (t2 + c_q2 * c_q2));
+  const S t2 = c_q1 * c_q1 + s_q1 * s_q1;
+  const S t3 = p[3] + p[2] * (c_q2 * (t2 + c_q2 * S(0.8)) + S(0.8) * (t0 + t1));
+  H[0] = t1 * S(1.6) * p[2] + (p[1] + p[3] + t2 * (c_q2 * p[2] + p[0]) * S(2));
+  H[1] = t3;
+  H[2] = t3;
+  H[3] = p[3] + S(1.6) * (t1 * p[2]);
 }
 
 // C(q, qd): Christoffel form (Hdot - 2C skew), row-major n x n

@@ -46,7 +46,7 @@ constexpr S sgn(S x) {
 }
 
 /// H(q): joint-space inertia, row-major n x n
-/// q[2], p[6], H[4]; per call: 18 mul, 11 add, 0 div, 4 sin/cos, 0 sqrt.
+/// q[2], p[6], H[4]; per call: 15 mul, 11 add, 0 div, 4 sin/cos, 0 sqrt.
 template <typename S>
 void mass_matrix(const S* q, const S* p, S* H);
 
