@@ -15,6 +15,10 @@ constexpr std::int64_t kLargestExpandedMultiple = 8;
 Lowering::Lowering(Program& program, std::unordered_map<sym::Expr, std::string> inputs)
     : program_(program), inputs_(std::move(inputs)) {}
 
+void Lowering::define(const sym::Bindings& bindings) {
+  for (const auto& [symbol, definition] : bindings.list()) definitions_[symbol] = definition;
+}
+
 ValueId Lowering::operator()(sym::Expr e) {
   if (const auto it = memo_.find(e); it != memo_.end()) return it->second;
   ValueId v = -1;
@@ -22,6 +26,10 @@ ValueId Lowering::operator()(sym::Expr e) {
     case sym::Kind::Number: v = program_.constant(e.value().to_double()); break;
     case sym::Kind::Constant: v = program_.constant(std::numbers::pi); break;
     case sym::Kind::Symbol: {
+      if (const auto def = definitions_.find(e); def != definitions_.end()) {
+        v = (*this)(def->second);
+        break;
+      }
       const auto it = inputs_.find(e);
       if (it == inputs_.end()) throw std::logic_error("codegen: symbol " + e.name() + " is not an input");
       v = program_.input(it->second);

@@ -17,6 +17,7 @@
 #include <unordered_map>
 
 #include "codegen/ir.hpp"
+#include "sym/bindings.hpp"
 #include "sym/expr.hpp"
 
 namespace dyncc::codegen {
@@ -27,6 +28,9 @@ class Lowering {
   Lowering(Program& program, std::unordered_map<sym::Expr, std::string> inputs);
 
   ValueId operator()(sym::Expr e);
+
+  /// Bound symbols (sym/bindings.hpp) are lowered as their definitions, each once.
+  void define(const sym::Bindings& bindings);
 
  private:
   // A term of a sum as coefficient * product of factors^exponents (positive integers); a term
@@ -54,6 +58,7 @@ class Lowering {
 
   Program& program_;
   std::unordered_map<sym::Expr, std::string> inputs_;
+  std::unordered_map<sym::Expr, sym::Expr> definitions_;
   std::unordered_map<sym::Expr, ValueId> memo_;
   std::unordered_map<sym::Expr, ValueId> sin_memo_, cos_memo_;
 };

@@ -234,12 +234,14 @@ class Builder {
   // ---- The same functions from the Newton-Euler torque (nullopt when the robot has none).
 
   std::optional<Function> inverse_dynamics_newton_euler() {
-    const auto tau = newton_euler(m_.qd, m_.a, true);
+    sym::Bindings lets;
+    const auto tau = newton_euler(m_.qd, m_.a, true, &lets);
     if (!tau) return std::nullopt;
     Function f = make_function("inverse_dynamics", "tau = H qdd + C qd + g + friction", {"q", "qd", "qdd", "p", "tau"},
                                {false, false, false, false, true});
     set_inputs(f, "qd", "qdd");
     Lowering lower(f.program, inputs_.map);
+    lower.define(lets);
     for (std::size_t i = 0; i < n_; ++i) {
       const ValueId friction = parameter_dot(f.program, lower, row(i), friction_);
       f.program.set_output(fmt::format("tau[{}]", i), f.program.add(lower((*tau)[i]), friction));
@@ -249,11 +251,13 @@ class Builder {
 
   std::optional<Function> gravity_newton_euler() {
     const std::vector<Expr> zeros(n_, Expr(0));
-    const auto tau = newton_euler(zeros, zeros, true);
+    sym::Bindings lets;
+    const auto tau = newton_euler(zeros, zeros, true, &lets);
     if (!tau) return std::nullopt;
     Function f = make_function("gravity_torque", "tau_g(q): gravity torque", {"q", "p", "g"}, {false, false, true});
     set_inputs(f, "v", "a");
     Lowering lower(f.program, inputs_.map);
+    lower.define(lets);
     for (std::size_t i = 0; i < n_; ++i) f.program.set_output(fmt::format("g[{}]", i), lower((*tau)[i]));
     return f;
   }
@@ -264,28 +268,30 @@ class Builder {
     set_inputs(f, "v", "a");
     Lowering lower(f.program, inputs_.map);
     const std::vector<Expr> zeros(n_, Expr(0));
+    sym::Bindings lets;
     for (std::size_t j = 0; j < n_; ++j) {
       std::vector<Expr> unit(n_, Expr(0));
       unit[j] = Expr(1);
-      const auto column = newton_euler(zeros, unit, false);
+      const auto column = newton_euler(zeros, unit, false, &lets);
       if (!column) return std::nullopt;
+      lower.define(lets);
       for (std::size_t i = 0; i < n_; ++i) f.program.set_output(fmt::format("H[{}]", i * n_ + j), lower((*column)[i]));
     }
     return f;
   }
 
   std::optional<Function> mass_matrix_composite() {
-    const auto H = dyn::composite_rigid_body_mass_matrix(robot_, m_);
+    const std::vector<Expr> values = standard_values();
+    sym::Bindings lets;
+    const auto H = dyn::composite_rigid_body_mass_matrix(robot_, m_, values, &lets);
     if (!H) return std::nullopt;
     Function f = make_function("mass_matrix", "H(q): joint-space inertia, row-major n x n", {"q", "p", "H"},
                                {false, false, true});
     set_inputs(f, "v", "a");
     Lowering lower(f.program, inputs_.map);
-    const sym::Substitution to_columns = standard_to_columns();
+    lower.define(lets);
     for (std::size_t i = 0; i < n_; ++i) {
-      for (std::size_t j = 0; j < n_; ++j) {
-        f.program.set_output(fmt::format("H[{}]", i * n_ + j), lower(sym::substitute((*H)[i][j], to_columns)));
-      }
+      for (std::size_t j = 0; j < n_; ++j) f.program.set_output(fmt::format("H[{}]", i * n_ + j), lower((*H)[i][j]));
     }
     return f;
   }
@@ -316,7 +322,7 @@ class Builder {
   // exactly the Christoffel one, Gamma(w, w) = N(w), so by polarisation
   //   C(qd) v = Gamma(qd, v) = N((qd + v)/2) - N((qd - v)/2)
   // and the torque is RNEA(q, (qd + v)/2, a, gravity) - RNEA(q, (qd - v)/2, 0, no gravity).
-  std::optional<std::vector<Expr>> slotine_li_rigid_torque() {
+  std::optional<std::vector<Expr>> slotine_li_rigid_torque(sym::Bindings* lets = nullptr) {
     std::vector<Expr> half_sum, half_difference;
     const sym::Rational half(1, 2);
     for (std::size_t k = 0; k < n_; ++k) {
@@ -324,8 +330,8 @@ class Builder {
       half_difference.push_back(Expr(half) * (m_.qd[k] - m_.v[k]));
     }
     const std::vector<Expr> zeros(n_, Expr(0));
-    const auto with_accelerations = newton_euler(half_sum, m_.a, true);
-    const auto velocity_only = newton_euler(half_difference, zeros, false);
+    const auto with_accelerations = newton_euler(half_sum, m_.a, true, lets);
+    const auto velocity_only = newton_euler(half_difference, zeros, false, lets);
     if (!with_accelerations || !velocity_only) return std::nullopt;
     std::vector<Expr> tau;
     for (std::size_t i = 0; i < n_; ++i) tau.push_back((*with_accelerations)[i] - (*velocity_only)[i]);
@@ -333,12 +339,14 @@ class Builder {
   }
 
   std::optional<Function> slotine_li_torque_newton_euler() {
-    const auto rigid = slotine_li_rigid_torque();
+    sym::Bindings lets;
+    const auto rigid = slotine_li_rigid_torque(&lets);
     if (!rigid) return std::nullopt;
     Function f = make_function("slotine_li_torque", "tau = Y(q, qd, v, a) p without forming Y",
                                {"q", "qd", "v", "a", "p", "tau"}, {false, false, false, false, false, true});
     set_inputs(f, "v", "a");
     Lowering lower(f.program, inputs_.map);
+    lower.define(lets);
     emit_torque_from(f, lower, *rigid);
     return f;
   }
@@ -394,30 +402,25 @@ class Builder {
     return f;
   }
 
-  std::optional<Function> control_step_newton_euler() {
+  // bind_torque: the torque from the bound (compact) Newton-Euler passes, Y^T e from the unbound
+  // ones; otherwise both from the same unbound expressions, which then share more.
+  std::optional<Function> control_step_newton_euler(bool bind_torque) {
+    sym::Bindings lets;
     const auto rigid = slotine_li_rigid_torque();
-    if (!rigid) return std::nullopt;
+    const auto bound = bind_torque ? slotine_li_rigid_torque(&lets) : rigid;
+    if (!rigid || !bound) return std::nullopt;
     Function f = make_function("control_step", "tau = Y p and YTe = Y^T e in one pass, sharing every subexpression",
                                {"q", "qd", "v", "a", "p", "e", "tau", "YTe"},
                                {false, false, false, false, false, false, true, true});
     set_inputs(f, "v", "a");
     Lowering lower(f.program, inputs_.map);
-    emit_torque_from(f, lower, *rigid);
+    lower.define(lets);
+    emit_torque_from(f, lower, *bound);
     emit_adaptation_from(f, lower, *rigid);
     return f;
   }
 
  private:
-  [[nodiscard]] sym::Substitution standard_to_columns() const {
-    sym::Substitution to_columns;
-    for (const dyn::StandardParameter& sp : m_.params.list) to_columns[sp.symbol] = Expr(0);
-    for (std::size_t b = 0; b < columns_.size(); ++b) {
-      const auto l = static_cast<std::size_t>(columns_[b].standard);
-      to_columns[m_.params.list[l].symbol] = parameter_symbol(b);
-    }
-    return to_columns;
-  }
-
   [[nodiscard]] std::vector<Expr> parameter_symbols() const {
     std::vector<Expr> out;
     for (std::size_t b = 0; b < columns_.size(); ++b) out.push_back(parameter_symbol(b));
@@ -455,13 +458,19 @@ class Builder {
   // The Newton-Euler torque with each column's standard parameter replaced by its p symbol and
   // every other standard parameter by 0 (a dependent parameter's effect is carried by the
   // base parameters it regroups into).
-  std::optional<std::vector<Expr>> newton_euler(std::span<const Expr> qd, std::span<const Expr> qdd, bool gravity) {
-    const auto tau = dyn::newton_euler_torque(robot_, m_, dyn::NewtonEulerInputs{qd, qdd, gravity});
-    if (!tau) return std::nullopt;
-    const sym::Substitution to_columns = standard_to_columns();
-    std::vector<Expr> out;
-    for (const Expr e : *tau) out.push_back(sym::substitute(e, to_columns));
-    return out;
+  std::optional<std::vector<Expr>> newton_euler(std::span<const Expr> qd, std::span<const Expr> qdd, bool gravity,
+                                                sym::Bindings* bindings = nullptr) {
+    const std::vector<Expr> values = standard_values();
+    return dyn::newton_euler_torque(robot_, m_, dyn::NewtonEulerInputs{qd, qdd, gravity, values, bindings});
+  }
+
+  // Per standard parameter: the p symbol of its column, or 0.
+  [[nodiscard]] std::vector<Expr> standard_values() const {
+    std::vector<Expr> values(m_.params.list.size(), Expr(0));
+    for (std::size_t b = 0; b < columns_.size(); ++b) {
+      values[static_cast<std::size_t>(columns_[b].standard)] = parameter_symbol(b);
+    }
+    return values;
   }
 
   void set_inputs(Function& f, const std::string& v_array, const std::string& a_array) {
@@ -542,7 +551,8 @@ ModelFunctions build_model_functions(const pipeline::Derivation& d) {
   out.functions.push_back(cheaper(base.regressor(true), base.identification_regressor_newton_euler()));
   out.functions.push_back(cheaper(base.slotine_li_torque(), base.slotine_li_torque_newton_euler()));
   out.functions.push_back(cheaper(base.adaptation_term(), base.adaptation_term_newton_euler()));
-  out.functions.push_back(cheaper(base.control_step(), base.control_step_newton_euler()));
+  out.functions.push_back(cheaper(cheaper(base.control_step(), base.control_step_newton_euler(false)),
+                                  base.control_step_newton_euler(true)));
   out.functions.push_back(base_parameters_from_link(d));
 
   std::vector<Column> standard_columns;

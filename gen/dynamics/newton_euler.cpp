@@ -26,6 +26,18 @@ struct LinkMotion {
   std::vector<Expr> coefficient;    // d(joint variable)/d(q_k), numbers
 };
 
+// The value of a standard parameter: its symbol, or what the caller substitutes for it.
+Expr parameter_value(const DynamicModel& model, std::span<const Expr> values, int index) {
+  if (index < 0) return Expr(0);
+  const auto i = static_cast<std::size_t>(index);
+  return values.empty() ? model.params.list[i].symbol : values[i];
+}
+
+Vec3 bind3(sym::Bindings* bindings, const Vec3& v) {
+  if (bindings == nullptr) return v;
+  return {bindings->bind(v[0]), bindings->bind(v[1]), bindings->bind(v[2])};
+}
+
 }  // namespace
 
 std::optional<std::vector<Expr>> newton_euler_torque(const robot::RobotDescription& robot, const DynamicModel& model,
@@ -76,13 +88,13 @@ std::optional<std::vector<Expr>> newton_euler_torque(const robot::RobotDescripti
       Vec3 ao = add3(add3(ap, kin::cross(wdp, p)), kin::cross(wp, kin::cross(wp, p)));
       ao = add3(ao,
                 add3(scale(Expr(2), kin::cross(wp, scale(rate, rel.joint_axis))), scale(acceleration, rel.joint_axis)));
-      L.w = w_in;
-      L.wd = wd_in;
-      L.a = kin::transpose_times(L.rotation, ao);
+      L.w = bind3(in.bindings, w_in);
+      L.wd = bind3(in.bindings, wd_in);
+      L.a = bind3(in.bindings, kin::transpose_times(L.rotation, ao));
       continue;
     }
-    L.w = add3(w_in, scale(rate, L.axis));
-    L.wd = add3(add3(wd_in, scale(acceleration, L.axis)), kin::cross(w_in, scale(rate, L.axis)));
+    L.w = bind3(in.bindings, add3(w_in, scale(rate, L.axis)));
+    L.wd = bind3(in.bindings, add3(add3(wd_in, scale(acceleration, L.axis)), kin::cross(w_in, scale(rate, L.axis))));
     if (L.axis_through_origin) {
       // The origin is on the axis: its acceleration as a point of the parent.
       const Vec3 p = L.origin;
@@ -93,6 +105,7 @@ std::optional<std::vector<Expr>> newton_euler_torque(const robot::RobotDescripti
       const Vec3 r = kin::transpose_times(L.rotation, L.origin);
       L.a = add3(add3(kin::transpose_times(L.rotation, ap), kin::cross(L.wd, r)), kin::cross(L.w, kin::cross(L.w, r)));
     }
+    L.a = bind3(in.bindings, L.a);
   }
 
   // ---- inward: force f and moment n (about the link origin) the parent exerts on each link
@@ -101,7 +114,9 @@ std::optional<std::vector<Expr>> newton_euler_torque(const robot::RobotDescripti
   for (std::size_t i = count; i-- > 0;) {
     const LinkMotion& L = links[i];
     const auto& of = model.params.of_link[i];
-    auto P = [&](StandardKind kind) { return model.params.symbol_or_zero(of[static_cast<std::size_t>(kind)]); };
+    auto P = [&](StandardKind kind) {
+      return parameter_value(model, in.parameters, of[static_cast<std::size_t>(kind)]);
+    };
     const Expr mass = P(StandardKind::M);
     const Vec3 h = {P(StandardKind::MX), P(StandardKind::MY), P(StandardKind::MZ)};
     const Mat3 inertia = {Vec3{P(StandardKind::XX), P(StandardKind::XY), P(StandardKind::XZ)},
@@ -110,8 +125,8 @@ std::optional<std::vector<Expr>> newton_euler_torque(const robot::RobotDescripti
     // F = m a + wd x h + w x (w x h);  N = I wd + w x (I w) + h x a
     const Vec3 F = add3(add3(scale(mass, L.a), kin::cross(L.wd, h)), kin::cross(L.w, kin::cross(L.w, h)));
     const Vec3 N = add3(add3(times(inertia, L.wd), kin::cross(L.w, times(inertia, L.w))), kin::cross(h, L.a));
-    f[i] = add3(f[i], F);
-    moment[i] = add3(moment[i], N);
+    f[i] = bind3(in.bindings, add3(f[i], F));
+    moment[i] = bind3(in.bindings, add3(moment[i], N));
     Expr joint;
     if (L.prismatic) {
       joint = kin::dot(L.axis, f[i]);
@@ -132,7 +147,9 @@ std::optional<std::vector<Expr>> newton_euler_torque(const robot::RobotDescripti
       moment[p] = add3(moment[p], add3(times(L.rotation, moment[i]), kin::cross(L.origin, f_parent)));
     }
   }
-  for (std::size_t k = 0; k < n; ++k) tau[k] += model.params.symbol_or_zero(model.params.rotor_of[k]) * in.qdd[k];
+  for (std::size_t k = 0; k < n; ++k) {
+    tau[k] += parameter_value(model, in.parameters, model.params.rotor_of[k]) * in.qdd[k];
+  }
   return tau;
 }
 
@@ -175,8 +192,8 @@ Expr joint_force(const LinkJoint& J, const Vec3& F, const Vec3& N) {
 
 }  // namespace
 
-std::optional<Matrix> composite_rigid_body_mass_matrix(const robot::RobotDescription& robot,
-                                                       const DynamicModel& model) {
+std::optional<Matrix> composite_rigid_body_mass_matrix(const robot::RobotDescription& robot, const DynamicModel& model,
+                                                       std::span<const Expr> parameters, sym::Bindings* bindings) {
   const std::size_t n = model.q.size();
   const std::size_t count = robot.links.size();
   const sym::Substitution constants = robot.constant_values();
@@ -202,7 +219,7 @@ std::optional<Matrix> composite_rigid_body_mass_matrix(const robot::RobotDescrip
     J.axis = kin::transpose_times(rel.rotation, rel.joint_axis);
     J.lever = rel.axis_through_child_origin ? kin::zero_vec() : kin::transpose_times(rel.rotation, rel.origin);
     const auto& of = model.params.of_link[i];
-    auto P = [&](StandardKind kind) { return model.params.symbol_or_zero(of[static_cast<std::size_t>(kind)]); };
+    auto P = [&](StandardKind kind) { return parameter_value(model, parameters, of[static_cast<std::size_t>(kind)]); };
     mass[i] = P(StandardKind::M);
     moment[i] = {P(StandardKind::MX), P(StandardKind::MY), P(StandardKind::MZ)};
     inertia[i] = {Vec3{P(StandardKind::XX), P(StandardKind::XY), P(StandardKind::XZ)},
@@ -222,6 +239,11 @@ std::optional<Matrix> composite_rigid_body_mass_matrix(const robot::RobotDescrip
     }
     moment[p] = add3(moment[p], add3(scale(mass[i], J.origin), h_parent));
     mass[p] += mass[i];
+    // The parent's composite body is complete once its last child is added; binding every
+    // accumulation is simpler and costs nothing extra.
+    moment[p] = bind3(bindings, moment[p]);
+    for (std::size_t r = 0; r < 3; ++r) inertia[p][r] = bind3(bindings, inertia[p][r]);
+    if (bindings != nullptr) mass[p] = bindings->bind(mass[p]);
   }
   // ---- H_tree[k][j]: the force a unit acceleration of joint j needs, at every ancestor k
   std::vector<std::vector<Expr>> tree(count, std::vector<Expr>(count, Expr(0)));
@@ -233,11 +255,13 @@ std::optional<Matrix> composite_rigid_body_mass_matrix(const robot::RobotDescrip
     const Vec3 linear = J.prismatic ? J.axis : kin::cross(J.axis, J.lever);
     Vec3 F = add3(scale(mass[j], linear), kin::cross(angular, moment[j]));
     Vec3 N = add3(times(inertia[j], angular), kin::cross(moment[j], linear));
+    F = bind3(bindings, F);
+    N = bind3(bindings, N);
     tree[j][j] = joint_force(J, F, N);
     for (std::size_t k = j; robot.links[k].parent >= 0;) {
       const LinkJoint& child = joints[k];
-      const Vec3 F_parent = times(child.rotation, F);
-      N = add3(times(child.rotation, N), kin::cross(child.origin, F_parent));
+      const Vec3 F_parent = bind3(bindings, times(child.rotation, F));
+      N = bind3(bindings, add3(times(child.rotation, N), kin::cross(child.origin, F_parent)));
       F = F_parent;
       k = static_cast<std::size_t>(robot.links[k].parent);
       tree[k][j] = joint_force(joints[k], F, N);
@@ -256,7 +280,7 @@ std::optional<Matrix> composite_rigid_body_mass_matrix(const robot::RobotDescrip
           sum += joints[k].coefficient[a] * joints[j].coefficient[b] * tree[k][j];
         }
       }
-      if (a == b) sum += model.params.symbol_or_zero(model.params.rotor_of[a]);
+      if (a == b) sum += parameter_value(model, parameters, model.params.rotor_of[a]);
       H[a][b] = sum;
       H[b][a] = sum;
     }

@@ -23,6 +23,7 @@
 
 #include "dynamics/model.hpp"
 #include "robot/description.hpp"
+#include "sym/bindings.hpp"
 
 namespace dyncc::dyn {
 
@@ -30,6 +31,11 @@ struct NewtonEulerInputs {
   std::span<const sym::Expr> qd;   // joint-space rates
   std::span<const sym::Expr> qdd;  // joint-space accelerations
   bool gravity = true;             // include tau_g (the base accelerates upwards by -g)
+  /// Value of each standard parameter (parallel to model.params.list); empty: their symbols.
+  std::span<const sym::Expr> parameters = {};
+  /// When given, every link's velocities, accelerations, forces and moments are bound to fresh
+  /// symbols (see sym/bindings.hpp): compact code, but not for differentiation.
+  sym::Bindings* bindings = nullptr;
 };
 
 /// tau per coordinate, in the model's coordinates and standard parameter symbols, with the
@@ -42,6 +48,8 @@ std::optional<std::vector<sym::Expr>> newton_euler_torque(const robot::RobotDesc
 /// about its root's origin, accumulated leaf to root; the force a unit acceleration of a joint
 /// needs, carried up to every ancestor joint), mapped onto the coordinates as G^T H_tree G
 /// plus the rotor inertias. Same conditions and parameter symbols as newton_euler_torque.
-std::optional<Matrix> composite_rigid_body_mass_matrix(const robot::RobotDescription& robot, const DynamicModel& model);
+std::optional<Matrix> composite_rigid_body_mass_matrix(const robot::RobotDescription& robot, const DynamicModel& model,
+                                                       std::span<const sym::Expr> parameters = {},
+                                                       sym::Bindings* bindings = nullptr);
 
 }  // namespace dyncc::dyn

@@ -97,7 +97,7 @@ constexpr S sgn(S x) {
 }
 
 /// H(q): joint-space inertia, row-major n x n
-/// q[7], p[57], H[49]; per call: 402 mul, 272 add, 0 div, 12 sin/cos, 0 sqrt.
+/// q[7], p[57], H[49]; per call: 280 mul, 237 add, 0 div, 12 sin/cos, 0 sqrt.
 template <typename S>
 void mass_matrix(const S* q, const S* p, S* H);
 
@@ -107,7 +107,7 @@ template <typename S>
 void coriolis_matrix(const S* q, const S* qd, const S* p, S* C);
 
 /// tau_g(q): gravity torque
-/// q[7], p[57], g[7]; per call: 73 mul, 49 add, 0 div, 12 sin/cos, 0 sqrt.
+/// q[7], p[57], g[7]; per call: 64 mul, 38 add, 0 div, 12 sin/cos, 0 sqrt.
 template <typename S>
 void gravity_torque(const S* q, const S* p, S* g);
 
@@ -117,7 +117,7 @@ template <typename S>
 void friction_torque(const S* qd, const S* v, const S* p, S* f);
 
 /// tau = H qdd + C qd + g + friction
-/// q[7], qd[7], qdd[7], p[57], tau[7]; per call: 470 mul, 384 add, 0 div, 12 sin/cos, 0 sqrt.
+/// q[7], qd[7], qdd[7], p[57], tau[7]; per call: 407 mul, 309 add, 0 div, 12 sin/cos, 0 sqrt.
 template <typename S>
 void inverse_dynamics(const S* q, const S* qd, const S* qdd, const S* p, S* tau);
 
@@ -132,7 +132,7 @@ template <typename S>
 void identification_regressor(const S* q, const S* qd, const S* qdd, S* Y);
 
 /// tau = Y(q, qd, v, a) p without forming Y
-/// q[7], qd[7], v[7], a[7], p[57], tau[7]; per call: 995 mul, 777 add, 0 div, 12 sin/cos, 0 sqrt.
+/// q[7], qd[7], v[7], a[7], p[57], tau[7]; per call: 819 mul, 609 add, 0 div, 12 sin/cos, 0 sqrt.
 template <typename S>
 void slotine_li_torque(const S* q, const S* qd, const S* v, const S* a, const S* p, S* tau);
 

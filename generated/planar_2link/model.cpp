@@ -7,21 +7,24 @@
 namespace dyncc::generated::planar_2link {
 
 // H(q): joint-space inertia, row-major n x n
-// 15 mul, 11 add, 0 div, 4 sin/cos, 0 sqrt
+// 15 mul, 12 add, 0 div, 4 sin/cos, 0 sqrt
 template <typename S>
 void mass_matrix(const S* q, const S* p, S* H) {
-  const S s_q2 = std::sin(q[1]);
-  const S t0 = s_q2 * s_q2;
-  const S c_q2 = std::cos(q[1]);
-  const S t1 = t0 + c_q2 * c_q2;
   const S c_q1 = std::cos(q[0]);
   const S s_q1 = std::sin(q[0]);
-  const S t2 = c_q1 * c_q1 + s_q1 * s_q1;
-  const S t3 = p[3] + p[2] * (c_q2 * (t2 + c_q2 * S(0.8)) + S(0.8) * (t0 + t1));
-  H[0] = t1 * S(1.6) * p[2] + (p[1] + p[3] + t2 * (c_q2 * p[2] + p[0]) * S(2));
-  H[1] = t3;
-  H[2] = t3;
-  H[3] = p[3] + S(1.6) * (t1 * p[2]);
+  const S t0 = c_q1 * c_q1 + s_q1 * s_q1;
+  const S c_q2 = std::cos(q[1]);
+  const S t1 = c_q2 * p[2];
+  const S t2 = t0 * (t1 + p[0]);
+  const S s_q2 = std::sin(q[1]);
+  const S t3 = s_q2 * s_q2 + c_q2 * c_q2;
+  const S t4 = S(0.8) * (p[2] * t3);
+  const S t5 = p[3] + t4;
+  const S t6 = (c_q2 * t1 - s_q2 * -(p[2] * s_q2)) * S(0.8) + t5 + t0 * t1;
+  H[0] = t2 + (t2 + (p[2] * (t3 * S(1.6)) + (p[1] + p[3])));
+  H[1] = t6;
+  H[2] = t6;
+  H[3] = t4 + t5;
 }
 
 // C(q, qd): Christoffel form (Hdot - 2C skew), row-major n x n
@@ -62,23 +65,25 @@ void friction_torque(const S* qd, const S* v, const S* p, S* f) {
 }
 
 // tau = H qdd + C qd + g + friction
-// 38 mul, 21 add, 0 div, 4 sin/cos, 0 sqrt
+// 33 mul, 21 add, 0 div, 4 sin/cos, 0 sqrt
 template <typename S>
 void inverse_dynamics(const S* q, const S* qd, const S* qdd, const S* p, S* tau) {
-  const S s_q2 = std::sin(q[1]);
-  const S t0 = qdd[0] + qdd[1];
   const S c_q2 = std::cos(q[1]);
-  const S t1 = qd[0] + qd[1];
-  const S t2 = t1 * t1;
-  const S t3 = (t0 * c_q2 - t2 * s_q2) * p[2];
+  const S t0 = qdd[0] + qdd[1];
+  const S t1 = t0 * p[2];
+  const S t2 = t1 * c_q2;
+  const S s_q2 = std::sin(q[1]);
+  const S t3 = qd[0] + qd[1];
+  const S t4 = -(p[2] * (t3 * t3));
+  const S t5 = s_q2 * t4;
   const S c_q1 = std::cos(q[0]);
   const S s_q1 = std::sin(q[0]);
-  const S t4 = c_q1 * c_q1 + s_q1 * s_q1;
-  const S t5 = S(100) * (qdd[0] * t4) + c_q1 * S(981);
-  const S t6 = c_q2 * c_q2 + s_q2 * s_q2;
-  const S t7 = p[2] * (s_q2 * (t4 * (qd[0] * qd[0]) * S(100) - s_q1 * S(981)) + c_q2 * t5 + t0 * t6 * S(80));
-  tau[0] = qd[0] * p[4] + ((s_q2 * (p[2] * (t0 * s_q2 + c_q2 * t2)) + c_q2 * t3) * S(0.8) + (qdd[0] * p[1] + (p[3] * t0 + (t3 + qdd[0] * p[0]) * t4) + (t7 + p[0] * t5) * S(0.01)));
-  tau[1] = qd[1] * p[5] + (t0 * (p[3] + S(0.8) * (p[2] * t6)) + t7 * S(0.01));
+  const S t6 = c_q1 * c_q1 + s_q1 * s_q1;
+  const S t7 = qdd[0] * t6 + c_q1 * S(9.81);
+  const S t8 = c_q2 * c_q2 + s_q2 * s_q2;
+  const S t9 = p[2] * (c_q2 * t7 - s_q2 * (s_q1 * S(9.81) - t6 * (qd[0] * qd[0])) + S(0.8) * (t0 * t8)) + t0 * p[3];
+  tau[0] = qd[0] * p[4] + ((c_q2 * (t2 + t5) - s_q2 * (c_q2 * t4 - t1 * s_q2)) * S(0.8) + (t9 + (qdd[0] * p[1] + p[0] * t7)) + t6 * (t5 + (t2 + qdd[0] * p[0])));
+  tau[1] = qd[1] * p[5] + (t9 + S(0.8) * (t1 * t8));
 }
 
 // Y(q, qd, v, a): Y p = H a + C v + g + FC sgn(qd) + FV v, n x r

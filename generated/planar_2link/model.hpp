@@ -46,7 +46,7 @@ constexpr S sgn(S x) {
 }
 
 /// H(q): joint-space inertia, row-major n x n
-/// q[2], p[6], H[4]; per call: 15 mul, 11 add, 0 div, 4 sin/cos, 0 sqrt.
+/// q[2], p[6], H[4]; per call: 15 mul, 12 add, 0 div, 4 sin/cos, 0 sqrt.
 template <typename S>
 void mass_matrix(const S* q, const S* p, S* H);
 
@@ -66,7 +66,7 @@ template <typename S>
 void friction_torque(const S* qd, const S* v, const S* p, S* f);
 
 /// tau = H qdd + C qd + g + friction
-/// q[2], qd[2], qdd[2], p[6], tau[2]; per call: 38 mul, 21 add, 0 div, 4 sin/cos, 0 sqrt.
+/// q[2], qd[2], qdd[2], p[6], tau[2]; per call: 33 mul, 21 add, 0 div, 4 sin/cos, 0 sqrt.
 template <typename S>
 void inverse_dynamics(const S* q, const S* qd, const S* qdd, const S* p, S* tau);
 

@@ -92,7 +92,7 @@ constexpr S sgn(S x) {
 }
 
 /// H(q): joint-space inertia, row-major n x n
-/// q[6], p[52], H[36]; per call: 264 mul, 203 add, 0 div, 10 sin/cos, 0 sqrt.
+/// q[6], p[52], H[36]; per call: 239 mul, 195 add, 0 div, 10 sin/cos, 0 sqrt.
 template <typename S>
 void mass_matrix(const S* q, const S* p, S* H);
 
@@ -102,7 +102,7 @@ template <typename S>
 void coriolis_matrix(const S* q, const S* qd, const S* p, S* C);
 
 /// tau_g(q): gravity torque
-/// q[6], p[52], g[6]; per call: 65 mul, 38 add, 0 div, 10 sin/cos, 0 sqrt.
+/// q[6], p[52], g[6]; per call: 54 mul, 32 add, 0 div, 10 sin/cos, 0 sqrt.
 template <typename S>
 void gravity_torque(const S* q, const S* p, S* g);
 
@@ -112,7 +112,7 @@ template <typename S>
 void friction_torque(const S* qd, const S* v, const S* p, S* f);
 
 /// tau = H qdd + C qd + g + friction
-/// q[6], qd[6], qdd[6], p[52], tau[6]; per call: 405 mul, 318 add, 0 div, 10 sin/cos, 0 sqrt.
+/// q[6], qd[6], qdd[6], p[52], tau[6]; per call: 366 mul, 279 add, 0 div, 10 sin/cos, 0 sqrt.
 template <typename S>
 void inverse_dynamics(const S* q, const S* qd, const S* qdd, const S* p, S* tau);
 
@@ -127,7 +127,7 @@ template <typename S>
 void identification_regressor(const S* q, const S* qd, const S* qdd, S* Y);
 
 /// tau = Y(q, qd, v, a) p without forming Y
-/// q[6], qd[6], v[6], a[6], p[52], tau[6]; per call: 817 mul, 611 add, 0 div, 10 sin/cos, 0 sqrt.
+/// q[6], qd[6], v[6], a[6], p[52], tau[6]; per call: 724 mul, 540 add, 0 div, 10 sin/cos, 0 sqrt.
 template <typename S>
 void slotine_li_torque(const S* q, const S* qd, const S* v, const S* a, const S* p, S* tau);
 
