@@ -38,6 +38,11 @@ EigenRbd::EigenRbd(RigidBodyTree tree) : tree_(std::move(tree)) {
   if (tree_.coupling.rows() != joints) throw std::invalid_argument("EigenRbd: coupling needs one row per joint");
   if (tree_.armature.size() != tree_.coupling.cols()) tree_.armature = Eigen::VectorXd::Zero(tree_.coupling.cols());
   identity_coupling_ = tree_.coupling.rows() == tree_.coupling.cols() && tree_.coupling.isIdentity(0.0);
+  // A body's own first moment and inertia about its origin are constant: computed once.
+  for (const RigidBody& b : tree_.bodies) {
+    first_moment_.emplace_back(b.mass * b.com);
+    inertia_at_origin_.emplace_back(b.inertia + b.mass * point_inertia(b.com));
+  }
   rotation_.resize(nb);
   offset_.resize(nb);
   omega_.resize(nb);
@@ -54,7 +59,7 @@ EigenRbd::EigenRbd(RigidBodyTree tree) : tree_(std::move(tree)) {
   tau_joint_.resize(joints);
   m_joint_.resize(joints, joints);
   m_times_coupling_.resize(joints, tree_.coupling.cols());
-  coordinates_.resize(tree_.coupling.cols());
+  zeros_.resize(tree_.coupling.cols());
 }
 
 void EigenRbd::place_bodies(const Eigen::VectorXd& joint_q) {
@@ -71,10 +76,9 @@ void EigenRbd::place_bodies(const Eigen::VectorXd& joint_q) {
 void EigenRbd::joint_mass_matrix() {
   const std::size_t nb = tree_.bodies.size();
   for (std::size_t i = 0; i < nb; ++i) {
-    const RigidBody& b = tree_.bodies[i];
-    composite_mass_[i] = b.mass;
-    composite_first_moment_[i] = b.mass * b.com;
-    composite_inertia_[i] = b.inertia + b.mass * point_inertia(b.com);
+    composite_mass_[i] = tree_.bodies[i].mass;
+    composite_first_moment_[i] = first_moment_[i];
+    composite_inertia_[i] = inertia_at_origin_[i];
   }
   for (std::size_t i = nb; i-- > 0;) {
     const int p = tree_.bodies[i].parent;
@@ -162,8 +166,12 @@ void EigenRbd::joint_inverse_dynamics(const Eigen::VectorXd& qd, const Eigen::Ve
 
 void EigenRbd::mass_matrix(const double* q, double* H) {
   const auto n = tree_.coupling.cols();
-  coordinates_ = Eigen::Map<const Eigen::VectorXd>(q, n);
-  q_joint_.noalias() = tree_.coupling * coordinates_;
+  const Eigen::Map<const Eigen::VectorXd> q_map(q, n);
+  if (identity_coupling_) {
+    q_joint_ = q_map;
+  } else {
+    q_joint_.noalias() = tree_.coupling * q_map;
+  }
   place_bodies(q_joint_);
   joint_mass_matrix();
   RowMajorMap h(H, n, n);
@@ -179,9 +187,15 @@ void EigenRbd::mass_matrix(const double* q, double* H) {
 void EigenRbd::inverse_dynamics(const double* q, const double* qd, const double* qdd, double* tau) {
   const auto n = tree_.coupling.cols();
   const Eigen::Map<const Eigen::VectorXd> q_map(q, n), qd_map(qd, n), qdd_map(qdd, n);
-  q_joint_.noalias() = tree_.coupling * q_map;
-  qd_joint_.noalias() = tree_.coupling * qd_map;
-  qdd_joint_.noalias() = tree_.coupling * qdd_map;
+  if (identity_coupling_) {
+    q_joint_ = q_map;
+    qd_joint_ = qd_map;
+    qdd_joint_ = qdd_map;
+  } else {
+    q_joint_.noalias() = tree_.coupling * q_map;
+    qd_joint_.noalias() = tree_.coupling * qd_map;
+    qdd_joint_.noalias() = tree_.coupling * qdd_map;
+  }
   place_bodies(q_joint_);
   joint_inverse_dynamics(qd_joint_, qdd_joint_);
   Eigen::Map<Eigen::VectorXd> out(tau, n);
@@ -194,8 +208,8 @@ void EigenRbd::inverse_dynamics(const double* q, const double* qd, const double*
 }
 
 void EigenRbd::gravity_torque(const double* q, double* g) {
-  coordinates_.setZero();
-  inverse_dynamics(q, coordinates_.data(), coordinates_.data(), g);
+  zeros_.setZero();
+  inverse_dynamics(q, zeros_.data(), zeros_.data(), g);
 }
 
 }  // namespace dyncc::bench

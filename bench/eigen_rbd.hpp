@@ -61,7 +61,9 @@ class EigenRbd {
 
   RigidBodyTree tree_;
   bool identity_coupling_ = false;
-  std::vector<int> joint_of_;  // per body: index of its joint, -1 when fixed
+  std::vector<int> joint_of_;                       // per body: index of its joint, -1 when fixed
+  std::vector<Eigen::Vector3d> first_moment_;       // per body: mass * centre of mass
+  std::vector<Eigen::Matrix3d> inertia_at_origin_;  // per body: about the body origin
   // Workspaces, per body: pose in the parent frame at the current q, velocities, composite
   // inertias (mass, first moment and inertia about the body origin), and forces.
   std::vector<Eigen::Matrix3d> rotation_;
@@ -70,7 +72,7 @@ class EigenRbd {
   std::vector<double> composite_mass_;
   std::vector<Eigen::Vector3d> composite_first_moment_;
   std::vector<Eigen::Matrix3d> composite_inertia_;
-  Eigen::VectorXd q_joint_, qd_joint_, qdd_joint_, tau_joint_, coordinates_;
+  Eigen::VectorXd q_joint_, qd_joint_, qdd_joint_, tau_joint_, zeros_;
   Eigen::MatrixXd m_joint_, m_times_coupling_;
 };
 

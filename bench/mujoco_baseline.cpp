@@ -23,6 +23,7 @@ MujocoBaseline::MujocoBaseline(const std::string& mjcf_path, Eigen::MatrixXd cou
     : coupling_(std::move(coupling)) {
   std::array<char, 1000> error{};
   model_ = mj_loadXML(mjcf_path.c_str(), nullptr, error.data(), static_cast<int>(error.size()));
+  mj_freeLastXML();  // MuJoCo keeps the parsed XML for mj_saveLastXML; nothing here needs it
   if (model_ == nullptr) throw std::runtime_error("MuJoCo cannot load " + mjcf_path + ": " + error.data());
   if (model_->nq != model_->nv || coupling_.rows() != model_->nv) {
     mj_deleteModel(model_);
@@ -99,6 +100,7 @@ std::unique_ptr<MujocoBaseline> mujoco_baseline_for(const robot::RobotDescriptio
   // Load once to find the joints' degrees of freedom by name, then build the coupling.
   std::array<char, 1000> error{};
   mjModel* m = mj_loadXML(path.c_str(), nullptr, error.data(), static_cast<int>(error.size()));
+  mj_freeLastXML();
   if (m == nullptr) throw std::runtime_error("MuJoCo cannot load the exported " + robot.name + ": " + error.data());
   Eigen::MatrixXd coupling = Eigen::MatrixXd::Zero(m->nv, static_cast<Eigen::Index>(robot.coordinates.size()));
   for (std::size_t b = 0; b < model.bodies.size(); ++b) {

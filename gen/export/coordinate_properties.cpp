@@ -11,6 +11,7 @@ std::vector<CoordinateProperties> coordinate_properties(const robot::RobotDescri
   }
   for (const robot::Rotor& r : robot.rotors) {
     out[static_cast<std::size_t>(r.coordinate)].rotor_inertia = value_of(r.reflected_inertia(), values);
+    out[static_cast<std::size_t>(r.coordinate)].rotor_location = r.location;
   }
   for (const robot::Friction& f : robot.friction) {
     out[static_cast<std::size_t>(f.coordinate)].coulomb = value_of(f.coulomb, values);

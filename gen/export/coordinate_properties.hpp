@@ -19,6 +19,7 @@ struct CoordinateProperties {
   double viscous = 0.0;
   std::optional<std::pair<double, double>> limits;  // lower, upper
   robot::SourceLocation location;                   // of the coordinate in `coordinates`
+  robot::SourceLocation rotor_location;             // of its `rotor` entry, if any
 };
 
 /// One entry per coordinate, nominal values.

@@ -53,7 +53,7 @@ class UrdfWriter {
     }
     for (const CoordinateProperties& c : model_.coordinates) {
       if (c.rotor_inertia == 0.0) continue;
-      drop(c.location, "rotor." + c.name,
+      drop(c.rotor_location, "rotor." + c.name,
            fmt::format("rotor inertia {} of {} (URDF has no armature)", number(c.rotor_inertia), c.name));
     }
   }
