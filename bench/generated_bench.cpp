@@ -1,25 +1,36 @@
-// Per-call time of the generated code (generated/<robot>/): H, C, tau_g, the regressor, inverse
-// dynamics and the fused control step, in double and float, for every checked-in model.
-// Inputs are varied from call to call (a small ring of random states) so nothing is hoisted out
-// of the loop; the baselines (Eigen CRBA + RNEA, MuJoCo) live beside this file.
+// Per-call time of the generated code (generated/<robot>/) beside the baselines a user would
+// pick, in the same process and run: plain Eigen CRBA + RNEA (eigen_rbd.hpp) and MuJoCo 2.2 on
+// the exported MJCF (mujoco_baseline.hpp), for the Kraft arm, the PUMA 560 and the Panda.
+//   <Quantity>/<implementation>/<robot>
+// Quantities: MassMatrix, InverseDynamics (tau = H qdd + C qd + g, with friction for dyncc),
+// Gravity; dyncc only: Coriolis (the Christoffel matrix), Regressor (Slotine-Li Y),
+// ControlStep (fused Y p and Y^T e, the adaptive controller's kernel), in double and float.
+// Inputs cycle through 64 fixed random states so nothing is hoisted out of the loop.
+// bench/run_speed_comparison.sh turns the output into the ratio table of docs/performance.md.
 #include <benchmark/benchmark.h>
 
 #include <array>
+#include <cstdio>
+#include <filesystem>
 #include <random>
+#include <string>
+#include <vector>
 
+#include "baselines.hpp"
 #include "kraft/model.hpp"
 #include "panda/model.hpp"
 #include "puma560/model.hpp"
 
 namespace {
 
+constexpr int kStates = 64;
+
 template <typename S, int N, int R>
 struct Inputs {
-  static constexpr int kStates = 64;
   std::array<std::array<S, N>, kStates> q, qd, v, a, e;
   std::array<S, R> p;
   explicit Inputs(const double* nominal) {
-    std::mt19937_64 rng(42);
+    std::mt19937_64 rng(20261122);
     std::uniform_real_distribution<double> angle(-3.0, 3.0), rate(-2.0, 2.0);
     for (int s = 0; s < kStates; ++s) {
       for (int i = 0; i < N; ++i) {
@@ -34,88 +45,142 @@ struct Inputs {
   }
 };
 
-#define DYNCC_BENCH_MODEL(NS, LABEL, S)                                                                     \
-  void LABEL##_mass_matrix_##S(benchmark::State& st) {                                                       \
-    namespace M = dyncc::generated::NS;                                                                      \
-    Inputs<S, M::kDof, M::kBaseParameters> in(M::kNominalBaseParameters);                                    \
-    std::array<S, M::kDof * M::kDof> H{};                                                                    \
-    int k = 0;                                                                                               \
-    for (auto _ : st) {                                                                                      \
-      M::mass_matrix(in.q[k].data(), in.p.data(), H.data());                                                 \
-      benchmark::DoNotOptimize(H);                                                                           \
-      k = (k + 1) % in.kStates;                                                                              \
-    }                                                                                                        \
-  }                                                                                                          \
-  BENCHMARK(LABEL##_mass_matrix_##S);                                                                        \
-  void LABEL##_coriolis_matrix_##S(benchmark::State& st) {                                                   \
-    namespace M = dyncc::generated::NS;                                                                      \
-    Inputs<S, M::kDof, M::kBaseParameters> in(M::kNominalBaseParameters);                                    \
-    std::array<S, M::kDof * M::kDof> C{};                                                                    \
-    int k = 0;                                                                                               \
-    for (auto _ : st) {                                                                                      \
-      M::coriolis_matrix(in.q[k].data(), in.qd[k].data(), in.p.data(), C.data());                            \
-      benchmark::DoNotOptimize(C);                                                                           \
-      k = (k + 1) % in.kStates;                                                                              \
-    }                                                                                                        \
-  }                                                                                                          \
-  BENCHMARK(LABEL##_coriolis_matrix_##S);                                                                    \
-  void LABEL##_gravity_##S(benchmark::State& st) {                                                           \
-    namespace M = dyncc::generated::NS;                                                                      \
-    Inputs<S, M::kDof, M::kBaseParameters> in(M::kNominalBaseParameters);                                    \
-    std::array<S, M::kDof> g{};                                                                              \
-    int k = 0;                                                                                               \
-    for (auto _ : st) {                                                                                      \
-      M::gravity_torque(in.q[k].data(), in.p.data(), g.data());                                              \
-      benchmark::DoNotOptimize(g);                                                                           \
-      k = (k + 1) % in.kStates;                                                                              \
-    }                                                                                                        \
-  }                                                                                                          \
-  BENCHMARK(LABEL##_gravity_##S);                                                                            \
-  void LABEL##_regressor_##S(benchmark::State& st) {                                                         \
-    namespace M = dyncc::generated::NS;                                                                      \
-    Inputs<S, M::kDof, M::kBaseParameters> in(M::kNominalBaseParameters);                                    \
-    std::array<S, M::kDof * M::kBaseParameters> Y{};                                                         \
-    int k = 0;                                                                                               \
-    for (auto _ : st) {                                                                                      \
-      M::regressor(in.q[k].data(), in.qd[k].data(), in.v[k].data(), in.a[k].data(), Y.data());               \
-      benchmark::DoNotOptimize(Y);                                                                           \
-      k = (k + 1) % in.kStates;                                                                              \
-    }                                                                                                        \
-  }                                                                                                          \
-  BENCHMARK(LABEL##_regressor_##S);                                                                          \
-  void LABEL##_inverse_dynamics_##S(benchmark::State& st) {                                                  \
-    namespace M = dyncc::generated::NS;                                                                      \
-    Inputs<S, M::kDof, M::kBaseParameters> in(M::kNominalBaseParameters);                                    \
-    std::array<S, M::kDof> tau{};                                                                            \
-    int k = 0;                                                                                               \
-    for (auto _ : st) {                                                                                      \
-      M::inverse_dynamics(in.q[k].data(), in.qd[k].data(), in.a[k].data(), in.p.data(), tau.data());         \
-      benchmark::DoNotOptimize(tau);                                                                         \
-      k = (k + 1) % in.kStates;                                                                              \
-    }                                                                                                        \
-  }                                                                                                          \
-  BENCHMARK(LABEL##_inverse_dynamics_##S);                                                                   \
-  void LABEL##_control_step_##S(benchmark::State& st) {                                                      \
-    namespace M = dyncc::generated::NS;                                                                      \
-    Inputs<S, M::kDof, M::kBaseParameters> in(M::kNominalBaseParameters);                                    \
-    std::array<S, M::kDof> tau{};                                                                            \
-    std::array<S, M::kBaseParameters> yte{};                                                                 \
-    int k = 0;                                                                                               \
-    for (auto _ : st) {                                                                                      \
-      M::control_step(in.q[k].data(), in.qd[k].data(), in.v[k].data(), in.a[k].data(), in.p.data(),         \
-                      in.e[k].data(), tau.data(), yte.data());                                               \
-      benchmark::DoNotOptimize(tau);                                                                         \
-      benchmark::DoNotOptimize(yte);                                                                         \
-      k = (k + 1) % in.kStates;                                                                              \
-    }                                                                                                        \
-  }                                                                                                          \
-  BENCHMARK(LABEL##_control_step_##S);
+// Registers the generated functions of one model namespace, for scalar S.
+template <typename S, typename Fns>
+void register_generated(const std::string& robot, const std::string& suffix) {
+  using In = Inputs<S, Fns::n, Fns::r>;
+  auto add = [&](const std::string& quantity, auto body) {
+    benchmark::RegisterBenchmark((quantity + "/dyncc" + suffix + "/" + robot).c_str(), [body](benchmark::State& st) {
+      In in(Fns::nominal());
+      std::array<S, Fns::n * Fns::r> out{};
+      std::array<S, Fns::r> out2{};
+      int k = 0;
+      for (auto _ : st) {
+        body(in, k, out.data(), out2.data());
+        benchmark::DoNotOptimize(out.data());
+        benchmark::DoNotOptimize(out2.data());
+        benchmark::ClobberMemory();
+        k = (k + 1) % kStates;
+      }
+    });
+  };
+  add("MassMatrix", [](In& in, int k, S* o, S*) { Fns::mass_matrix(in.q[k].data(), in.p.data(), o); });
+  add("InverseDynamics", [](In& in, int k, S* o, S*) {
+    Fns::inverse_dynamics(in.q[k].data(), in.qd[k].data(), in.a[k].data(), in.p.data(), o);
+  });
+  add("Gravity", [](In& in, int k, S* o, S*) { Fns::gravity_torque(in.q[k].data(), in.p.data(), o); });
+  add("Coriolis",
+      [](In& in, int k, S* o, S*) { Fns::coriolis_matrix(in.q[k].data(), in.qd[k].data(), in.p.data(), o); });
+  add("Regressor", [](In& in, int k, S* o, S*) {
+    Fns::regressor(in.q[k].data(), in.qd[k].data(), in.v[k].data(), in.a[k].data(), o);
+  });
+  add("ControlStep", [](In& in, int k, S* o, S* o2) {
+    Fns::control_step(in.q[k].data(), in.qd[k].data(), in.v[k].data(), in.a[k].data(), in.p.data(), in.e[k].data(), o,
+                      o2);
+  });
+}
 
-DYNCC_BENCH_MODEL(kraft_right, kraft, double)
-DYNCC_BENCH_MODEL(kraft_right, kraft, float)
-DYNCC_BENCH_MODEL(puma560, puma560, double)
-DYNCC_BENCH_MODEL(panda, panda, double)
+#define DYNCC_GENERATED_FUNCTIONS(NS, S)                                                                            \
+  struct NS##_##S {                                                                                                 \
+    static constexpr int n = dyncc::generated::NS::kDof;                                                            \
+    static constexpr int r = dyncc::generated::NS::kBaseParameters;                                                 \
+    static const double* nominal() { return dyncc::generated::NS::kNominalBaseParameters; }                         \
+    static void mass_matrix(const S* q, const S* p, S* H) { dyncc::generated::NS::mass_matrix(q, p, H); }           \
+    static void inverse_dynamics(const S* q, const S* qd, const S* qdd, const S* p, S* t) {                         \
+      dyncc::generated::NS::inverse_dynamics(q, qd, qdd, p, t);                                                     \
+    }                                                                                                               \
+    static void gravity_torque(const S* q, const S* p, S* g) { dyncc::generated::NS::gravity_torque(q, p, g); }     \
+    static void coriolis_matrix(const S* q, const S* qd, const S* p, S* C) {                                        \
+      dyncc::generated::NS::coriolis_matrix(q, qd, p, C);                                                           \
+    }                                                                                                               \
+    static void regressor(const S* q, const S* qd, const S* v, const S* a, S* Y) {                                  \
+      dyncc::generated::NS::regressor(q, qd, v, a, Y);                                                              \
+    }                                                                                                               \
+    static void control_step(const S* q, const S* qd, const S* v, const S* a, const S* p, const S* e, S* t, S* y) { \
+      dyncc::generated::NS::control_step(q, qd, v, a, p, e, t, y);                                                  \
+    }                                                                                                               \
+  };
+
+DYNCC_GENERATED_FUNCTIONS(kraft_right, double)
+DYNCC_GENERATED_FUNCTIONS(kraft_right, float)
+DYNCC_GENERATED_FUNCTIONS(puma560, double)
+DYNCC_GENERATED_FUNCTIONS(panda, double)
+
+struct States {
+  std::vector<Eigen::VectorXd> q, qd, qdd;
+};
+
+States random_states(int n) {
+  std::mt19937_64 rng(20261122);
+  std::uniform_real_distribution<double> angle(-3.0, 3.0), rate(-2.0, 2.0);
+  States s;
+  for (int k = 0; k < kStates; ++k) {
+    Eigen::VectorXd q(n), qd(n), qdd(n);
+    for (int i = 0; i < n; ++i) {
+      q[i] = angle(rng);
+      qd[i] = rate(rng);
+      qdd[i] = rate(rng);
+    }
+    s.q.push_back(q);
+    s.qd.push_back(qd);
+    s.qdd.push_back(qdd);
+  }
+  return s;
+}
+
+void register_baselines(const std::string& robot, dyncc::bench::Baselines& b) {
+  using dyncc::bench::Baselines;
+  using V = Eigen::VectorXd;
+  auto add = [&](const std::string& name, auto call) {
+    benchmark::RegisterBenchmark(name.c_str(), [&b, call](benchmark::State& st) {
+      const int n = static_cast<int>(b.robot.coordinates.size());
+      const States s = random_states(n);
+      V out(n * n);
+      int k = 0;
+      for (auto _ : st) {
+        call(b, s.q[k], s.qd[k], s.qdd[k], out.data());
+        benchmark::DoNotOptimize(out.data());
+        benchmark::ClobberMemory();
+        k = (k + 1) % kStates;
+      }
+    });
+  };
+  add("MassMatrix/Eigen/" + robot,
+      [](Baselines& x, const V& q, const V&, const V&, double* o) { x.eigen->mass_matrix(q.data(), o); });
+  add("MassMatrix/MuJoCo/" + robot,
+      [](Baselines& x, const V& q, const V&, const V&, double* o) { x.mujoco->mass_matrix(q.data(), o); });
+  add("InverseDynamics/Eigen/" + robot, [](Baselines& x, const V& q, const V& qd, const V& qdd, double* o) {
+    x.eigen->inverse_dynamics(q.data(), qd.data(), qdd.data(), o);
+  });
+  add("InverseDynamics/MuJoCo/" + robot, [](Baselines& x, const V& q, const V& qd, const V& qdd, double* o) {
+    x.mujoco->inverse_dynamics(q.data(), qd.data(), qdd.data(), o);
+  });
+  add("Gravity/Eigen/" + robot,
+      [](Baselines& x, const V& q, const V&, const V&, double* o) { x.eigen->gravity_torque(q.data(), o); });
+}
 
 }  // namespace
 
-BENCHMARK_MAIN();
+int main(int argc, char** argv) {
+  const std::filesystem::path robots = std::filesystem::path(DYNCC_SOURCE_DIR) / "robots";
+  std::vector<std::pair<std::string, dyncc::bench::Baselines>> loaded;
+  loaded.reserve(3);
+  for (const char* name : {"kraft", "puma560", "panda"}) {
+    try {
+      loaded.emplace_back(name, dyncc::bench::load_baselines(robots / (std::string(name) + ".yaml")));
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "generated_bench: %s\n", e.what());
+      return 2;
+    }
+  }
+  register_generated<double, kraft_right_double>("kraft", "");
+  register_generated<float, kraft_right_float>("kraft", "-float");
+  register_generated<double, puma560_double>("puma560", "");
+  register_generated<double, panda_double>("panda", "");
+  for (auto& [name, b] : loaded) register_baselines(name, b);
+  benchmark::Initialize(&argc, argv);
+  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}
