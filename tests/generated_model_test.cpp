@@ -277,6 +277,11 @@ TEST(GenerateCommand, BadInputExitsTwoWithAMessage) {
   const ShellRun no_out = shell(dyncc + " generate '" + DYNCC_SOURCE_DIR + "/robots/kraft.yaml'");
   EXPECT_EQ(no_out.exit_code, 2) << no_out.out;
   EXPECT_FALSE(std::filesystem::exists("/tmp/dyncc_never_written"));
+  // A folder that cannot be created: exit 2 and say which.
+  const ShellRun unwritable =
+      shell(dyncc + " generate '" + DYNCC_SOURCE_DIR + "/robots/kraft.yaml' -o /proc/dyncc/kraft");
+  EXPECT_EQ(unwritable.exit_code, 2) << unwritable.out;
+  EXPECT_NE(unwritable.out.find("/proc/dyncc/kraft"), std::string::npos) << unwritable.out;
 }
 
 }  // namespace
