@@ -18,6 +18,7 @@
 
 #include "dynamics_support.hpp"
 #include "eigen_rbd.hpp"
+#include "export_random_robot.hpp"
 #include "export_support.hpp"
 
 namespace dyncc::test {
@@ -114,9 +115,9 @@ Eigen::Matrix3d from_rpy(const Eigen::Vector3d& rpy) {
       .toRotationMatrix();
 }
 
-std::filesystem::path export_urdf(const std::string& file, DynccRun* run_out = nullptr) {
-  const std::filesystem::path out = output_path("urdf");
-  const DynccRun run = run_dyncc("export " + quoted(robots_dir() / file) + " --format urdf -o " + quoted(out));
+std::filesystem::path export_urdf(const std::filesystem::path& description, DynccRun* run_out = nullptr) {
+  const std::filesystem::path out = output_path(description.stem().string() + ".urdf");
+  const DynccRun run = run_dyncc("export " + quoted(description) + " --format urdf -o " + quoted(out));
   EXPECT_EQ(run.exit_code, 0) << run.errors;
   if (run_out != nullptr) *run_out = run;
   return out;
@@ -126,7 +127,7 @@ std::filesystem::path export_urdf(const std::string& file, DynccRun* run_out = n
 
 TEST(ExportUrdf, KraftListsTheDroppedLoopAndCouplings) {
   DynccRun run;
-  const std::filesystem::path file = export_urdf("kraft.yaml", &run);
+  const std::filesystem::path file = export_urdf(robots_dir() / "kraft.yaml", &run);
   EXPECT_NE(run.errors.find("warning: loops.elbow_parallelogram: URDF export drops the loop 'elbow_parallelogram'"),
             std::string::npos)
       << run.errors;
@@ -141,26 +142,32 @@ TEST(ExportUrdf, KraftListsTheDroppedLoopAndCouplings) {
   EXPECT_EQ(urdf.joints.size(), 5U);
 }
 
+/// The URDF of a description is a tree of its links under `base` (under `world` when the
+/// description's gravity is not along -z).
+void check_structure(const std::filesystem::path& description) {
+  const auto loaded = robot::load_robot(description);
+  ASSERT_TRUE(loaded.ok());
+  const robot::RobotDescription& robot = *loaded.robot;
+  const Urdf urdf = parse_urdf(export_urdf(description));
+  const std::array<double, 3> g = robot.gravity_values();
+  const bool turned = !(g[0] == 0.0 && g[1] == 0.0 && g[2] < 0.0);
+  EXPECT_EQ(urdf.root, turned ? "world" : "base");
+  EXPECT_EQ(urdf.links.size(), robot.links.size() + (turned ? 2 : 1));
+  EXPECT_EQ(urdf.joints.size(), robot.links.size() + (turned ? 1 : 0));
+  std::set<std::string> link_names, child_names;
+  for (const UrdfLink& l : urdf.links) EXPECT_TRUE(link_names.insert(l.name).second) << "duplicate link " << l.name;
+  for (const UrdfJoint& j : urdf.joints) {
+    EXPECT_TRUE(link_names.contains(j.parent)) << j.name << ": unknown parent " << j.parent;
+    EXPECT_TRUE(link_names.contains(j.child)) << j.name << ": unknown child " << j.child;
+    EXPECT_TRUE(child_names.insert(j.child).second) << j.child << " has two parent joints";
+  }
+  for (const robot::Link& l : robot.links) EXPECT_TRUE(child_names.contains(l.name)) << l.name << " is missing";
+}
+
 TEST(ExportUrdf, EveryShippedRobotIsATreeOfItsLinks) {
   for (const auto& path : shipped_robots()) {
     SCOPED_TRACE(path.filename().string());
-    const auto loaded = robot::load_robot(path);
-    ASSERT_TRUE(loaded.ok());
-    const robot::RobotDescription& robot = *loaded.robot;
-    const Urdf urdf = parse_urdf(export_urdf(path.filename().string()));
-    // A description whose gravity is not along -z gets a `world` root above `base`.
-    const bool turned = robot.gravity_values()[2] == 0.0;
-    EXPECT_EQ(urdf.root, turned ? "world" : "base");
-    EXPECT_EQ(urdf.links.size(), robot.links.size() + (turned ? 2 : 1));
-    EXPECT_EQ(urdf.joints.size(), robot.links.size() + (turned ? 1 : 0));
-    std::set<std::string> link_names, child_names;
-    for (const UrdfLink& l : urdf.links) EXPECT_TRUE(link_names.insert(l.name).second) << "duplicate link " << l.name;
-    for (const UrdfJoint& j : urdf.joints) {
-      EXPECT_TRUE(link_names.contains(j.parent)) << j.name << ": unknown parent " << j.parent;
-      EXPECT_TRUE(link_names.contains(j.child)) << j.name << ": unknown child " << j.child;
-      EXPECT_TRUE(child_names.insert(j.child).second) << j.child << " has two parent joints";
-    }
-    for (const robot::Link& l : robot.links) EXPECT_TRUE(child_names.contains(l.name)) << l.name << " is missing";
+    check_structure(path);
   }
 }
 
@@ -212,10 +219,16 @@ bench::RigidBodyTree tree_from_urdf(const Urdf& urdf, const robot::RobotDescript
   return tree;
 }
 
-void check_urdf_dynamics(const std::string& file) {
-  const auto d = derive_file(robots_dir() / file);
-  ASSERT_TRUE(d);
-  const Urdf urdf = parse_urdf(export_urdf(file));
+struct Worst {
+  double H = 0, g = 0;
+};
+
+Worst check_urdf_dynamics(const std::filesystem::path& description) {
+  Worst w;
+  const std::string file = description.filename().string();
+  const auto d = derive_file(description);
+  if (!d) return w;
+  const Urdf urdf = parse_urdf(export_urdf(description));
   JointVariables joints(d->robot);
   const auto n = static_cast<Eigen::Index>(d->robot.coordinates.size());
   bench::EigenRbd rbd(tree_from_urdf(urdf, d->robot, Eigen::VectorXd::Zero(n), joints));
@@ -235,7 +248,6 @@ void check_urdf_dynamics(const std::string& file) {
   const Eigen::VectorXd standard = d->numeric->nominal_standard_values();
   const Eigen::VectorXd rotor = rotor_inertias(d->robot);
   std::mt19937_64 rng(7);
-  double worst_h = 0, worst_g = 0;
   for (int k = 0; k < 20; ++k) {
     const dyn::State s = random_state(n, rng);
     const dyn::Evaluation e = d->numeric->evaluate(s, standard, false);
@@ -244,19 +256,48 @@ void check_urdf_dynamics(const std::string& file) {
     rbd.mass_matrix(s.q.data(), H.data());
     rbd.gravity_torque(s.q.data(), g.data());
     const Eigen::MatrixXd expected_h = e.H - Eigen::MatrixXd(rotor.asDiagonal());
-    worst_h = std::max(worst_h, relative_difference(H, expected_h, max_abs(expected_h)));
-    worst_g = std::max(worst_g, relative_difference(g, e.g, max_abs(e.g)));
+    w.H = std::max(w.H, relative_difference(H, expected_h, max_abs(expected_h)));
+    // Relative to g, unless gravity hardly loads the joints (then rounding dominates g).
+    w.g = std::max(w.g, relative_difference(g, e.g, std::max(max_abs(e.g), 1e-6 * max_abs(e.H))));
   }
-  EXPECT_LT(worst_h, kTolerance) << file << ": the URDF tree's H differs from dyncc's (rotors aside)";
-  EXPECT_LT(worst_g, kTolerance) << file << ": the URDF tree's gravity torque differs from dyncc's";
-  std::cout << file << " URDF: max relative error H " << scientific(worst_h) << "  g " << scientific(worst_g) << "\n";
+  EXPECT_LT(w.H, kTolerance) << file << ": the URDF tree's H differs from dyncc's (rotors aside)";
+  EXPECT_LT(w.g, kTolerance) << file << ": the URDF tree's gravity torque differs from dyncc's";
+  return w;
 }
 
-TEST(ExportUrdf, KraftTreeHasDynccDynamics) { check_urdf_dynamics("kraft.yaml"); }
-TEST(ExportUrdf, Puma560TreeHasDynccDynamics) { check_urdf_dynamics("puma560.yaml"); }
-TEST(ExportUrdf, PandaTreeHasDynccDynamics) { check_urdf_dynamics("panda.yaml"); }
+void check_shipped(const std::string& file) {
+  const Worst w = check_urdf_dynamics(robots_dir() / file);
+  std::cout << file << " URDF: max relative error H " << scientific(w.H) << "  g " << scientific(w.g) << "\n";
+}
+
+TEST(ExportUrdf, KraftTreeHasDynccDynamics) { check_shipped("kraft.yaml"); }
+TEST(ExportUrdf, Puma560TreeHasDynccDynamics) { check_shipped("puma560.yaml"); }
+TEST(ExportUrdf, PandaTreeHasDynccDynamics) { check_shipped("panda.yaml"); }
 // Gravity along -y: the base is turned under a `world` root.
-TEST(ExportUrdf, PlanarArmTreeHasDynccDynamicsUnderTurnedBase) { check_urdf_dynamics("planar_2link.yaml"); }
+TEST(ExportUrdf, PlanarArmTreeHasDynccDynamicsUnderTurnedBase) { check_shipped("planar_2link.yaml"); }
+
+// Random descriptions (export_random_robot.hpp): mimic joints, welded links, prismatic joints,
+// gravity in other directions; URDF keeps the description's own mass properties.
+TEST(ExportUrdf, RandomDescriptionsAreTreesWithDynccDynamics) {
+  std::mt19937_64 rng(4243);
+  Worst largest;
+  for (int r = 0; r < 12; ++r) {
+    const std::string label = cat({"random", std::to_string(r)});
+    const std::string text = random_export_robot(rng, r);
+    const std::filesystem::path yaml = output_path(label + ".yaml");
+    std::ofstream(yaml) << text;
+    check_structure(yaml);
+    const Worst w = check_urdf_dynamics(yaml);
+    largest.H = std::max(largest.H, w.H);
+    largest.g = std::max(largest.g, w.g);
+    if (::testing::Test::HasFailure()) {
+      ADD_FAILURE() << label << ":\n" << text;
+      return;
+    }
+  }
+  std::cout << "random descriptions URDF: max relative error H " << scientific(largest.H) << "  g "
+            << scientific(largest.g) << "\n";
+}
 
 }  // namespace
 }  // namespace dyncc::test

@@ -48,7 +48,9 @@ class MjcfWriter {
     if (!model_.description.empty()) xml_.comment(model_.description);
     xml_.comment("Each joint reads 0 at q = 0 (the description's joint offsets are in the body poses).");
     xml_.comment("Coordinates: " + coordinates_text(model_));
-    for (const RepairNote& note : repair_.notes) xml_.comment("MuJoCo admissibility: " + note.text);
+    for (const RepairNote& note : repair_.notes) {
+      xml_.comment((note.exact ? "MuJoCo admissibility: " : "MuJoCo admissibility (approximate): ") + note.text);
+    }
   }
 
   void body(std::size_t index) {
@@ -188,9 +190,13 @@ class MjcfWriter {
   void report_repairs() {
     for (const RepairNote& note : repair_.notes) {
       const Body& b = body_of(note.body);
-      warnings_.push_back(
-          warning_at(model_.source, b.location, "",
-                     "MuJoCo refuses the mass properties as given; exported an equivalent set: " + note.text));
+      warnings_.push_back(warning_at(model_.source, b.location, "",
+                                     note.exact ? "MuJoCo refuses the mass properties as given; exported an equivalent "
+                                                  "set: " +
+                                                      note.text
+                                                : "MuJoCo refuses the mass properties as given and no equivalent set "
+                                                  "exists; exported an approximation: " +
+                                                      note.text));
     }
     for (const int index : repair_.unrepaired) {
       const Body& b = body_of(index);

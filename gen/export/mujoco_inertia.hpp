@@ -1,8 +1,8 @@
 // Mass properties MuJoCo accepts, with the same dynamics.
 //
-// MuJoCo 2.2 refuses a moving body whose mass or any principal moment of inertia is not
-// positive, or whose principal moments break the triangle inequality A + B >= C (unless told to
-// "balance" them, which changes the dynamics). Published parameter sets do that: the PUMA 560's
+// MuJoCo 2.2 refuses a body with a joint whose mass or any principal moment of inertia is not
+// positive, and any body whose principal moments break the triangle inequality A + B >= C
+// (unless told to "balance" them, which changes the dynamics). Published parameter sets do that: the PUMA 560's
 // link 1 has mass 0 and a single moment about its joint axis, its link 3 breaks the triangle
 // inequality, and a thin rod has a zero moment about its own axis.
 //
@@ -12,11 +12,14 @@
 //    component of omega perpendicular to a is the same for both). Moving it from the parent to
 //    the body changes no term of H, C or g. (Prismatic joint: body and parent turn together,
 //    so any tensor moves; an isotropic one is used.) On a body whose parent is the fixed base it
-//    is simply added.
+//    is simply added. A body without a joint turns with its parent, so any tensor moves too.
 //  - A mass at a point that never moves changes nothing: on a body turning about a fixed axis
 //    (a revolute joint on the base), a point of that axis.
-// Bodies are treated children first, so a parent pays for its children before it is checked.
-// Anything these moves cannot repair is reported; MuJoCo will then reject the model.
+// Bodies are treated children first, so a parent pays for its children before it is checked; a
+// child takes nothing from a parent that could not then repair itself. Where no exact move
+// exists (a thin rod whose parent is a thin rod along another axis), the last resort adds the
+// smallest mass and isotropic inertia MuJoCo takes, 1e-9 of the robot's largest, and says so.
+// Anything still inadmissible is reported; MuJoCo will then reject the model.
 #pragma once
 
 #include <Eigen/Geometry>
@@ -29,7 +32,8 @@ namespace dyncc::exporting {
 
 struct RepairNote {
   int body = -1;
-  std::string text;  // what changed, naming the bodies involved
+  bool exact = true;  // false: the last resort, which changes the dynamics slightly
+  std::string text;   // what changed, naming the bodies involved
 };
 
 struct InertiaRepair {
@@ -52,8 +56,9 @@ struct PrincipalInertia {
 /// mathematically (a thin rod meets it with equality; MuJoCo checks the printed numbers).
 PrincipalInertia principal_inertia(const Eigen::Matrix3d& inertia);
 
-/// True when MuJoCo accepts the mass properties of a moving body.
-bool admissible_for_mujoco(const Inertial& inertial);
+/// True when MuJoCo accepts the body's mass properties: the triangle inequality for every body;
+/// positive mass and principal moments for a body with a joint.
+bool admissible_for_mujoco(const Body& body);
 
 InertiaRepair repair_for_mujoco(std::vector<Body> bodies);
 
