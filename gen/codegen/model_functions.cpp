@@ -296,24 +296,17 @@ class Builder {
     return f;
   }
 
-  std::optional<Function> identification_regressor_newton_euler() {
-    const auto tau = newton_euler(m_.qd, m_.a, true);
+  std::optional<Function> identification_regressor_newton_euler(bool bound) {
+    sym::Bindings lets;
+    const auto tau = newton_euler(m_.qd, m_.a, true, bound ? &lets : nullptr);
     if (!tau) return std::nullopt;
     Function f =
         make_function("identification_regressor", "Y(q, qd, qdd): tau = Y p with v = qd, a = qdd, row-major n x r",
                       {"q", "qd", "qdd", "Y"}, {false, false, false, true});
     set_inputs(f, "qd", "qdd");
     Lowering lower(f.program, inputs_.map);
-    const std::size_t r = columns_.size();
-    std::vector<Expr> parameters;
-    for (std::size_t b = 0; b < r; ++b) parameters.push_back(parameter_symbol(b));
-    for (std::size_t i = 0; i < n_; ++i) {
-      const std::vector<Expr> gradient = sym::gradient((*tau)[i], parameters);
-      for (std::size_t b = 0; b < r; ++b) {
-        const Expr entry = columns_[b].rigid_body ? gradient[b] : columns_[b].rows[i];
-        f.program.set_output(fmt::format("Y[{}]", i * r + b), lower(entry));
-      }
-    }
+    lower.define(lets);
+    emit_regressor_rows(f, lower, *tau, bound ? &lets : nullptr);
     return f;
   }
 
@@ -372,43 +365,38 @@ class Builder {
     return f;
   }
 
-  std::optional<Function> regressor_newton_euler() {
-    const auto rigid = slotine_li_rigid_torque();
+  std::optional<Function> regressor_newton_euler(bool bound) {
+    sym::Bindings lets;
+    const auto rigid = slotine_li_rigid_torque(bound ? &lets : nullptr);
     if (!rigid) return std::nullopt;
     Function f = make_function("regressor", "Y(q, qd, v, a): Y p = H a + C v + g + FC sgn(qd) + FV v, n x r",
                                {"q", "qd", "v", "a", "Y"}, {false, false, false, false, true});
     set_inputs(f, "v", "a");
     Lowering lower(f.program, inputs_.map);
-    const std::size_t r = columns_.size();
-    const std::vector<Expr> parameters = parameter_symbols();
-    for (std::size_t i = 0; i < n_; ++i) {
-      const std::vector<Expr> gradient = sym::gradient((*rigid)[i], parameters);
-      for (std::size_t b = 0; b < r; ++b) {
-        const Expr entry = columns_[b].rigid_body ? gradient[b] : columns_[b].rows[i];
-        f.program.set_output(fmt::format("Y[{}]", i * r + b), lower(entry));
-      }
-    }
+    lower.define(lets);
+    emit_regressor_rows(f, lower, *rigid, bound ? &lets : nullptr);
     return f;
   }
 
-  std::optional<Function> adaptation_term_newton_euler() {
-    const auto rigid = slotine_li_rigid_torque();
+  std::optional<Function> adaptation_term_newton_euler(bool bound) {
+    sym::Bindings lets;
+    const auto rigid = slotine_li_rigid_torque(bound ? &lets : nullptr);
     if (!rigid) return std::nullopt;
     Function f = make_function("adaptation_term", "YTe = Y(q, qd, v, a)^T e without forming Y",
                                {"q", "qd", "v", "a", "e", "YTe"}, {false, false, false, false, false, true});
     set_inputs(f, "v", "a");
     Lowering lower(f.program, inputs_.map);
-    emit_adaptation_from(f, lower, *rigid);
+    lower.define(lets);
+    emit_adaptation_from(f, lower, *rigid, bound ? &lets : nullptr);
     return f;
   }
 
-  // bind_torque: the torque from the bound (compact) Newton-Euler passes, Y^T e from the unbound
-  // ones; otherwise both from the same unbound expressions, which then share more.
-  std::optional<Function> control_step_newton_euler(bool bind_torque) {
+  // bound: the torque from the Newton-Euler passes with named intermediates, and Y^T e by a
+  // reverse sweep through them; otherwise both from the unbound (flattened) expressions.
+  std::optional<Function> control_step_newton_euler(bool bound_form) {
     sym::Bindings lets;
-    const auto rigid = slotine_li_rigid_torque();
-    const auto bound = bind_torque ? slotine_li_rigid_torque(&lets) : rigid;
-    if (!rigid || !bound) return std::nullopt;
+    const auto bound = slotine_li_rigid_torque(bound_form ? &lets : nullptr);
+    if (!bound) return std::nullopt;
     Function f = make_function("control_step", "tau = Y p and YTe = Y^T e in one pass, sharing every subexpression",
                                {"q", "qd", "v", "a", "p", "e", "tau", "YTe"},
                                {false, false, false, false, false, false, true, true});
@@ -416,11 +404,28 @@ class Builder {
     Lowering lower(f.program, inputs_.map);
     lower.define(lets);
     emit_torque_from(f, lower, *bound);
-    emit_adaptation_from(f, lower, *rigid);
+    emit_adaptation_from(f, lower, *bound, bound_form ? &lets : nullptr);
     return f;
   }
 
  private:
+  // Y rows: the rigid-body columns as d tau_i / dp (one reverse sweep per row, through the
+  // named intermediates when there are), the friction columns as they are.
+  void emit_regressor_rows(Function& f, Lowering& lower, const std::vector<Expr>& rigid, const sym::Bindings* lets) {
+    const std::size_t r = columns_.size();
+    const std::vector<Expr> parameters = parameter_symbols();
+    for (std::size_t i = 0; i < n_; ++i) {
+      sym::Bindings adjoints(fmt::format("$adj{}_", i));
+      const std::vector<Expr> gradient = lets == nullptr ? sym::gradient(rigid[i], parameters)
+                                                         : sym::gradient_through(rigid[i], *lets, parameters, adjoints);
+      lower.define(adjoints);
+      for (std::size_t b = 0; b < r; ++b) {
+        const Expr entry = columns_[b].rigid_body ? gradient[b] : columns_[b].rows[i];
+        f.program.set_output(fmt::format("Y[{}]", i * r + b), lower(entry));
+      }
+    }
+  }
+
   [[nodiscard]] std::vector<Expr> parameter_symbols() const {
     std::vector<Expr> out;
     for (std::size_t b = 0; b < columns_.size(); ++b) out.push_back(parameter_symbol(b));
@@ -437,10 +442,17 @@ class Builder {
 
   // Y^T e = d(e . tau)/dp: one reverse sweep over the torque's expression graph gives every
   // parameter's entry at once (the adjoint method), without forming Y.
-  void emit_adaptation_from(Function& f, Lowering& lower, const std::vector<Expr>& rigid) {
+  // With lets (the torque's named intermediates), the sweep runs through them
+  // (sym::gradient_through), keeping the recursion's sharing in the derivative too.
+  void emit_adaptation_from(Function& f, Lowering& lower, const std::vector<Expr>& rigid,
+                            const sym::Bindings* lets = nullptr) {
     Expr weighted(0);
     for (std::size_t i = 0; i < n_; ++i) weighted += weight_symbol(i) * rigid[i];
-    const std::vector<Expr> gradient = sym::gradient(weighted, parameter_symbols());
+    const std::vector<Expr> parameters = parameter_symbols();
+    sym::Bindings adjoints("$adj");
+    const std::vector<Expr> gradient = lets == nullptr ? sym::gradient(weighted, parameters)
+                                                       : sym::gradient_through(weighted, *lets, parameters, adjoints);
+    lower.define(adjoints);
     for (std::size_t b = 0; b < columns_.size(); ++b) {
       ValueId acc = f.program.constant(0.0);
       if (columns_[b].rigid_body) {
@@ -547,10 +559,13 @@ ModelFunctions build_model_functions(const pipeline::Derivation& d) {
   out.functions.push_back(cheaper(base.gravity_torque(), base.gravity_newton_euler()));
   out.functions.push_back(base.friction_torque());
   out.functions.push_back(cheaper(base.inverse_dynamics(), base.inverse_dynamics_newton_euler()));
-  out.functions.push_back(cheaper(base.regressor(false), base.regressor_newton_euler()));
-  out.functions.push_back(cheaper(base.regressor(true), base.identification_regressor_newton_euler()));
+  out.functions.push_back(
+      cheaper(cheaper(base.regressor(false), base.regressor_newton_euler(false)), base.regressor_newton_euler(true)));
+  out.functions.push_back(cheaper(cheaper(base.regressor(true), base.identification_regressor_newton_euler(false)),
+                                  base.identification_regressor_newton_euler(true)));
   out.functions.push_back(cheaper(base.slotine_li_torque(), base.slotine_li_torque_newton_euler()));
-  out.functions.push_back(cheaper(base.adaptation_term(), base.adaptation_term_newton_euler()));
+  out.functions.push_back(cheaper(cheaper(base.adaptation_term(), base.adaptation_term_newton_euler(false)),
+                                  base.adaptation_term_newton_euler(true)));
   out.functions.push_back(cheaper(cheaper(base.control_step(), base.control_step_newton_euler(false)),
                                   base.control_step_newton_euler(true)));
   out.functions.push_back(base_parameters_from_link(d));
@@ -568,7 +583,8 @@ ModelFunctions build_model_functions(const pipeline::Derivation& d) {
       cheaper(standard.coriolis_matrix(), standard.coriolis_matrix_newton_euler()));
   out.standard_parameter_variants.push_back(cheaper(standard.gravity_torque(), standard.gravity_newton_euler()));
   out.standard_parameter_variants.push_back(
-      cheaper(standard.regressor(true), standard.identification_regressor_newton_euler()));
+      cheaper(cheaper(standard.regressor(true), standard.identification_regressor_newton_euler(false)),
+              standard.identification_regressor_newton_euler(true)));
   return out;
 }
 

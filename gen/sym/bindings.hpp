@@ -8,6 +8,7 @@
 // symbols were independent variables.
 #pragma once
 
+#include <span>
 #include <string>
 #include <utility>
 #include <vector>
@@ -18,15 +19,26 @@ namespace dyncc::sym {
 
 class Bindings {
  public:
+  explicit Bindings(std::string prefix = "$let") : prefix_(std::move(prefix)) {}
+
   /// A fresh symbol standing for value (numbers and symbols are returned as they are: binding
-  /// them saves nothing). Names are "$let<prefix><index>": unique within this object.
+  /// them saves nothing). Names are prefix + index: unique within this object.
   Expr bind(Expr value);
 
   /// symbol -> definition, in the order bound (a definition only uses earlier symbols).
   [[nodiscard]] const std::vector<std::pair<Expr, Expr>>& list() const { return list_; }
 
  private:
+  std::string prefix_;
   std::vector<std::pair<Expr, Expr>> list_;
 };
+
+/// d(objective)/d(vars) when objective and the definitions of `bindings` contain bound symbols:
+/// one reverse (adjoint) sweep over the bindings, last to first, so the recursion's sharing
+/// carries over to the derivative. Each adjoint that is used more than once is bound in
+/// `adjoints` (a second Bindings whose symbols must not clash: give it another prefix).
+/// vars must be plain symbols that are not bound.
+std::vector<Expr> gradient_through(Expr objective, const Bindings& bindings, std::span<const Expr> vars,
+                                   Bindings& adjoints);
 
 }  // namespace dyncc::sym

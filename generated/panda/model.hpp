@@ -122,12 +122,12 @@ template <typename S>
 void inverse_dynamics(const S* q, const S* qd, const S* qdd, const S* p, S* tau);
 
 /// Y(q, qd, v, a): Y p = H a + C v + g + FC sgn(qd) + FV v, n x r
-/// q[7], qd[7], v[7], a[7], Y[399]; per call: 1826 mul, 1187 add, 0 div, 12 sin/cos, 0 sqrt.
+/// q[7], qd[7], v[7], a[7], Y[399]; per call: 1572 mul, 1248 add, 0 div, 12 sin/cos, 0 sqrt.
 template <typename S>
 void regressor(const S* q, const S* qd, const S* v, const S* a, S* Y);
 
 /// Y(q, qd, qdd): tau = Y p with v = qd, a = qdd, row-major n x r
-/// q[7], qd[7], qdd[7], Y[399]; per call: 1076 mul, 669 add, 0 div, 12 sin/cos, 0 sqrt.
+/// q[7], qd[7], qdd[7], Y[399]; per call: 778 mul, 520 add, 0 div, 12 sin/cos, 0 sqrt.
 template <typename S>
 void identification_regressor(const S* q, const S* qd, const S* qdd, S* Y);
 
@@ -142,7 +142,7 @@ template <typename S>
 void adaptation_term(const S* q, const S* qd, const S* v, const S* a, const S* e, S* YTe);
 
 /// tau = Y p and YTe = Y^T e in one pass, sharing every subexpression
-/// q[7], qd[7], v[7], a[7], p[57], e[7], tau[7], YTe[57]; per call: 1444 mul, 1067 add, 0 div, 12 sin/cos, 0 sqrt.
+/// q[7], qd[7], v[7], a[7], p[57], e[7], tau[7], YTe[57]; per call: 1264 mul, 1011 add, 0 div, 12 sin/cos, 0 sqrt.
 template <typename S>
 void control_step(const S* q, const S* qd, const S* v, const S* a, const S* p, const S* e, S* tau, S* YTe);
 

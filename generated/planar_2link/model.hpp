@@ -76,7 +76,7 @@ template <typename S>
 void regressor(const S* q, const S* qd, const S* v, const S* a, S* Y);
 
 /// Y(q, qd, qdd): tau = Y p with v = qd, a = qdd, row-major n x r
-/// q[2], qd[2], qdd[2], Y[12]; per call: 30 mul, 18 add, 0 div, 4 sin/cos, 0 sqrt.
+/// q[2], qd[2], qdd[2], Y[12]; per call: 22 mul, 14 add, 0 div, 4 sin/cos, 0 sqrt.
 template <typename S>
 void identification_regressor(const S* q, const S* qd, const S* qdd, S* Y);
 

@@ -117,12 +117,12 @@ template <typename S>
 void inverse_dynamics(const S* q, const S* qd, const S* qdd, const S* p, S* tau);
 
 /// Y(q, qd, v, a): Y p = H a + C v + g + FC sgn(qd) + FV v, n x r
-/// q[6], qd[6], v[6], a[6], Y[312]; per call: 1190 mul, 773 add, 0 div, 10 sin/cos, 0 sqrt.
+/// q[6], qd[6], v[6], a[6], Y[312]; per call: 949 mul, 818 add, 0 div, 10 sin/cos, 0 sqrt.
 template <typename S>
 void regressor(const S* q, const S* qd, const S* v, const S* a, S* Y);
 
 /// Y(q, qd, qdd): tau = Y p with v = qd, a = qdd, row-major n x r
-/// q[6], qd[6], qdd[6], Y[312]; per call: 680 mul, 413 add, 0 div, 10 sin/cos, 0 sqrt.
+/// q[6], qd[6], qdd[6], Y[312]; per call: 466 mul, 331 add, 0 div, 10 sin/cos, 0 sqrt.
 template <typename S>
 void identification_regressor(const S* q, const S* qd, const S* qdd, S* Y);
 
@@ -137,7 +137,7 @@ template <typename S>
 void adaptation_term(const S* q, const S* qd, const S* v, const S* a, const S* e, S* YTe);
 
 /// tau = Y p and YTe = Y^T e in one pass, sharing every subexpression
-/// q[6], qd[6], v[6], a[6], p[52], e[6], tau[6], YTe[52]; per call: 1277 mul, 876 add, 0 div, 10 sin/cos, 0 sqrt.
+/// q[6], qd[6], v[6], a[6], p[52], e[6], tau[6], YTe[52]; per call: 1129 mul, 900 add, 0 div, 10 sin/cos, 0 sqrt.
 template <typename S>
 void control_step(const S* q, const S* qd, const S* v, const S* a, const S* p, const S* e, S* tau, S* YTe);
 
