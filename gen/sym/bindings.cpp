@@ -21,8 +21,9 @@ std::vector<Expr> gradient_through(Expr objective, const Bindings& bindings, std
   for (std::size_t k = 0; k < bindings.list().size(); ++k) bound_index.emplace(bindings.list()[k].first, k);
   std::unordered_map<Expr, bool> is_var;
   for (const Expr v : vars) is_var.emplace(v, true);
-  // adjoint[x] = d objective / d x, accumulated over every use of x.
-  std::unordered_map<Expr, Expr> adjoint;
+  // d objective / d x = the sum of these terms, one per use of x; summed once, when x is reached
+  // (adding one term at a time would rebuild an ever longer canonical sum: quadratic).
+  std::unordered_map<Expr, std::vector<Expr>> adjoint;
   auto propagate = [&](Expr expression, Expr weight) {
     std::vector<Expr> inner;
     for (const Expr s : free_symbols(expression)) {
@@ -31,23 +32,23 @@ std::vector<Expr> gradient_through(Expr objective, const Bindings& bindings, std
     if (inner.empty()) return;
     const std::vector<Expr> partials = gradient(expression, inner);
     for (std::size_t j = 0; j < inner.size(); ++j) {
-      if (partials[j].is_zero()) continue;
-      Expr& a = adjoint[inner[j]];
-      a = a + weight * partials[j];
+      if (!partials[j].is_zero()) adjoint[inner[j]].push_back(weight * partials[j]);
     }
   };
   propagate(objective, Expr(1));
   for (std::size_t k = bindings.list().size(); k-- > 0;) {
     const auto& [symbol, definition] = bindings.list()[k];
     const auto it = adjoint.find(symbol);
-    if (it == adjoint.end() || it->second.is_zero()) continue;
-    propagate(definition, adjoints.bind(it->second));
+    if (it == adjoint.end()) continue;
+    const Expr total = add(it->second);
+    if (total.is_zero()) continue;
+    propagate(definition, adjoints.bind(total));
   }
   std::vector<Expr> out;
   out.reserve(vars.size());
   for (const Expr v : vars) {
     const auto it = adjoint.find(v);
-    out.push_back(it == adjoint.end() ? Expr(0) : it->second);
+    out.push_back(it == adjoint.end() ? Expr(0) : add(it->second));
   }
   return out;
 }
