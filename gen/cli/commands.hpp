@@ -37,8 +37,8 @@ int run_verify(const VerifyOptions& o);
 
 struct GenerateOptions {
   std::string robot;
-  std::string out_dir;     // generated/<robot>/
-  bool check = false;      // compare with what is in out_dir instead of writing; exit 1 on a difference
+  std::string out_dir;  // generated/<robot>/
+  bool check = false;   // compare with what is in out_dir instead of writing; exit 1 on a difference
 };
 int run_generate(const GenerateOptions& o);
 

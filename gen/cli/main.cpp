@@ -79,7 +79,8 @@ void add_robot_commands(CLI::App& app, int& exit_code) {
 void add_output_commands(CLI::App& app, int& exit_code) {
   auto generate = std::make_shared<GenerateOptions>();
   auto* generate_cmd =
-      app.add_subcommand("generate", "Emit optimised, allocation-free C++ of the model (H, C, g, Y, fused control step)");
+      app.add_subcommand("generate",
+                         "Emit optimised, allocation-free C++ of the model (H, C, g, Y, fused control step)");
   generate_cmd->add_option("ROBOT", generate->robot, "Robot description (YAML)")->required();
   generate_cmd->add_option("-o,--out", generate->out_dir, "Output folder, e.g. generated/kraft")->required();
   generate_cmd->add_flag("--check", generate->check,

@@ -40,7 +40,14 @@ ValueId Lowering::operator()(sym::Expr e) {
     case sym::Kind::Sin: v = sin_of(e.args()[0]); break;
     case sym::Kind::Cos: v = cos_of(e.args()[0]); break;
     case sym::Kind::Sqrt: v = program_.sqrt((*this)(e.args()[0])); break;
-    case sym::Kind::Atan2: v = program_.atan2((*this)(e.args()[0]), (*this)(e.args()[1])); break;
+    case sym::Kind::Atan2: {
+      // Operands lowered in a fixed order: value numbers must not depend on the compiler's
+      // (unspecified) order of evaluating function arguments, or the output would.
+      const ValueId y = (*this)(e.args()[0]);
+      const ValueId x = (*this)(e.args()[1]);
+      v = program_.atan2(y, x);
+      break;
+    }
   }
   memo_.emplace(e, v);
   return v;
@@ -196,6 +203,19 @@ ValueId Lowering::cos_of(sym::Expr angle) {
   return v;
 }
 
+// sin(a + b) = sa*cb + ca*sb, cos(a + b) = ca*cb - sa*sb; the products made one after the other
+// (not as two arguments of one call, whose evaluation order the compiler chooses).
+ValueId Lowering::angle_sum(ValueId sa, ValueId ca, ValueId sb, ValueId cb, bool want_sin) {
+  if (want_sin) {
+    const ValueId first = program_.mul(sa, cb);
+    const ValueId second = program_.mul(ca, sb);
+    return program_.add(first, second);
+  }
+  const ValueId first = program_.mul(ca, cb);
+  const ValueId second = program_.mul(sa, sb);
+  return program_.sub(first, second);
+}
+
 ValueId Lowering::trig_of(sym::Expr angle, bool want_sin) {
   auto direct = [&] {
     const ValueId x = (*this)(angle);
@@ -207,8 +227,7 @@ ValueId Lowering::trig_of(sym::Expr angle, bool want_sin) {
     const sym::Expr first = sym::Expr(angle.weights()[0]) * angle.args()[0];
     const sym::Expr rest = angle - first;
     const ValueId sa = sin_of(first), ca = cos_of(first), sb = sin_of(rest), cb = cos_of(rest);
-    return want_sin ? program_.add(program_.mul(sa, cb), program_.mul(ca, sb))
-                    : program_.sub(program_.mul(ca, cb), program_.mul(sa, sb));
+    return angle_sum(sa, ca, sb, cb, want_sin);
   }
   // An integer multiple k*x: sin(k x) = sin((k-1) x) cos x + cos((k-1) x) sin x.
   const auto [k, x] = angle.kind() == sym::Kind::Add && angle.args().size() == 1 && angle.value().is_zero()
@@ -222,8 +241,7 @@ ValueId Lowering::trig_of(sym::Expr angle, bool want_sin) {
     }
     const sym::Expr smaller = sym::Expr(k - sym::Rational(1)) * x;
     const ValueId sa = sin_of(smaller), ca = cos_of(smaller), sb = sin_of(x), cb = cos_of(x);
-    return want_sin ? program_.add(program_.mul(sa, cb), program_.mul(ca, sb))
-                    : program_.sub(program_.mul(ca, cb), program_.mul(sa, sb));
+    return angle_sum(sa, ca, sb, cb, want_sin);
   }
   return direct();
 }

@@ -55,6 +55,7 @@ class Lowering {
   ValueId cos_of(sym::Expr angle);
   /// sin (want_sin) or cos of angle, expanded by the angle-sum formulas.
   ValueId trig_of(sym::Expr angle, bool want_sin);
+  ValueId angle_sum(ValueId sa, ValueId ca, ValueId sb, ValueId cb, bool want_sin);
 
   Program& program_;
   std::unordered_map<sym::Expr, std::string> inputs_;

@@ -90,7 +90,11 @@ ValueId parameter_dot(Program& prog, Lowering& lower, const std::vector<Expr>& e
   ValueId acc = prog.constant(0.0);
   for (const std::size_t b : which) {
     if (entries[b].is_zero()) continue;
-    acc = prog.add(acc, prog.mul(lower(parameter_symbol(b)), lower(entries[b])));
+    // One lowering after the other: value numbers (and so the output) must not depend on the
+    // compiler's order of evaluating function arguments.
+    const ValueId parameter = lower(parameter_symbol(b));
+    const ValueId entry = lower(entries[b]);
+    acc = prog.add(acc, prog.mul(parameter, entry));
   }
   return acc;
 }
@@ -460,7 +464,9 @@ class Builder {
       } else {
         for (std::size_t i = 0; i < n_; ++i) {
           if (columns_[b].rows[i].is_zero()) continue;
-          acc = f.program.add(acc, f.program.mul(lower(columns_[b].rows[i]), lower(weight_symbol(i))));
+          const ValueId entry = lower(columns_[b].rows[i]);
+          const ValueId weight = lower(weight_symbol(i));
+          acc = f.program.add(acc, f.program.mul(entry, weight));
         }
       }
       f.program.set_output(fmt::format("YTe[{}]", b), acc);
@@ -503,7 +509,9 @@ class Builder {
       ValueId acc = f.program.constant(0.0);
       for (std::size_t i = 0; i < n_; ++i) {
         if (columns_[b].rows[i].is_zero()) continue;
-        acc = f.program.add(acc, f.program.mul(lower(columns_[b].rows[i]), lower(weight_symbol(i))));
+        const ValueId entry = lower(columns_[b].rows[i]);
+        const ValueId weight = lower(weight_symbol(i));
+        acc = f.program.add(acc, f.program.mul(entry, weight));
       }
       f.program.set_output(fmt::format("YTe[{}]", b), acc);
     }

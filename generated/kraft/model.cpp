@@ -12,20 +12,20 @@ template <typename S>
 void mass_matrix(const S* q, const S* p, S* H) {
   const S s_q2 = std::sin(q[1]);
   const S c_q2 = std::cos(q[1]);
+  const S s_q3 = std::sin(q[2]);
   const S c_q3 = std::cos(q[2]);
   const S t0 = -s_q2;
-  const S s_q3 = std::sin(q[2]);
-  const S t1 = c_q3 * t0 + c_q2 * s_q3;
+  const S t1 = c_q2 * s_q3 + c_q3 * t0;
   const S t2 = s_q2 * t1;
   const S t3 = c_q2 * c_q3 - s_q3 * t0;
   const S t4 = c_q2 * t3;
   const S t5 = t2 - t4;
   const S t6 = s_q2 * t3 + c_q2 * t1;
   const S t7 = t6 * t6;
-  const S t8 = s_q2 * S(0.075) * p[1] + p[6] * ((t1 * t5 + t3 * t6) * S(0.18));
-  const S t9 = p[4] * (t6 * S(0.13)) + p[5] * (S(0.13) * (t4 - t2)) + -t6 * p[9] + t5 * p[10] + s_q3 * S(0.1) * p[12];
+  const S t8 = p[1] * (s_q2 * S(0.075)) + p[6] * ((t1 * t5 + t3 * t6) * S(0.18));
+  const S t9 = p[4] * (t6 * S(0.13)) + p[5] * (S(0.13) * (t4 - t2)) + p[9] * -t6 + t5 * p[10] + p[12] * (s_q3 * S(0.1));
   const S t10 = p[4] * (t3 * S(0.18)) + p[5] * (t1 * S(-0.18));
-  H[0] = p[0] + s_q2 * s_q2 * p[2] + c_q2 * t5 * S(-0.36) * p[4] + S(-0.36) * (c_q2 * t6) * p[5] + (t5 * t5 + t7) * S(0.26) * p[6] + t7 * p[7] + t5 * t6 * S(-2) * p[8];
+  H[0] = p[0] + p[2] * (s_q2 * s_q2) + p[4] * (c_q2 * t5 * S(-0.36)) + p[5] * (S(-0.36) * (c_q2 * t6)) + p[6] * ((t5 * t5 + t7) * S(0.26)) + t7 * p[7] + p[8] * (t5 * t6 * S(-2));
   H[3] = t8;
   H[6] = t9;
   H[1] = t8;
@@ -43,10 +43,10 @@ void coriolis_matrix(const S* q, const S* qd, const S* p, S* C) {
   const S c_q2 = std::cos(q[1]);
   const S s_q2 = std::sin(q[1]);
   const S t0 = s_q2 * qd[1];
+  const S s_q3 = std::sin(q[2]);
   const S c_q3 = std::cos(q[2]);
   const S t1 = -s_q2;
-  const S s_q3 = std::sin(q[2]);
-  const S t2 = c_q3 * t1 + c_q2 * s_q3;
+  const S t2 = c_q2 * s_q3 + c_q3 * t1;
   const S t3 = c_q2 * c_q3 - s_q3 * t1;
   const S t4 = s_q2 * t2 - c_q2 * t3;
   const S t5 = s_q2 * t3 + c_q2 * t2;
@@ -62,13 +62,13 @@ void coriolis_matrix(const S* q, const S* qd, const S* p, S* C) {
   const S t15 = qd[0] * (c_q2 * t4);
   const S t16 = qd[0] * (t5 * t4);
   const S t17 = qd[2] * t4;
-  C[0] = c_q2 * t0 * p[2] + (t0 * t4 - qd[2] * t6) * S(0.18) * p[4] + S(0.18) * (t4 * (c_q2 * qd[2]) + t0 * t5) * p[5] + -(t4 * t7) * p[7] + qd[2] * t10 * p[8];
+  C[0] = p[2] * (c_q2 * t0) + p[4] * ((t0 * t4 - qd[2] * t6) * S(0.18)) + p[5] * (S(0.18) * (t4 * (c_q2 * qd[2]) + t0 * t5)) + p[7] * -(t4 * t7) + p[8] * (qd[2] * t10);
   C[3] = p[2] * -t11 + p[4] * (t12 * S(-0.18)) + p[5] * (S(-0.18) * t13);
   C[6] = p[4] * t14 + p[5] * (S(-0.18) * t15) + p[7] * t16 + p[8] * (qd[0] * (t9 - t8));
-  C[1] = qd[1] * c_q2 * S(0.075) * p[1] + p[2] * t11 + p[4] * (S(0.18) * t12) + p[5] * (S(0.18) * t13) + S(0.18) * (qd[1] * (t2 * t5 - t3 * t4)) * p[6];
+  C[1] = p[1] * (qd[1] * c_q2 * S(0.075)) + p[2] * t11 + p[4] * (S(0.18) * t12) + p[5] * (S(0.18) * t13) + p[6] * (S(0.18) * (qd[1] * (t2 * t5 - t3 * t4)));
   C[4] = S(0);
   C[7] = p[4] * (S(0.18) * (qd[1] * t2)) + p[5] * (S(0.18) * (qd[1] * t3));
-  C[2] = p[4] * -(t14 + t17 * S(0.13)) + p[5] * (S(0.18) * t15 - t7 * S(0.13)) + p[7] * -t16 + p[8] * (t10 * qd[0]) + t17 * p[9] + t7 * p[10] + c_q3 * qd[2] * S(0.1) * p[12];
+  C[2] = p[4] * -(t14 + t17 * S(0.13)) + p[5] * (S(0.18) * t15 - t7 * S(0.13)) + p[7] * -t16 + p[8] * (t10 * qd[0]) + t17 * p[9] + t7 * p[10] + p[12] * (c_q3 * qd[2] * S(0.1));
   C[5] = p[4] * (S(-0.18) * (t2 * qd[2])) + p[5] * (S(-0.18) * (t3 * qd[2]));
   C[8] = S(0);
 }
@@ -79,14 +79,14 @@ template <typename S>
 void gravity_torque(const S* q, const S* p, S* g) {
   const S c_q2 = std::cos(q[1]);
   const S s_q2 = std::sin(q[1]);
+  const S s_q3 = std::sin(q[2]);
   const S c_q3 = std::cos(q[2]);
   const S t0 = -s_q2;
-  const S s_q3 = std::sin(q[2]);
-  const S t1 = c_q3 * t0 + c_q2 * s_q3;
+  const S t1 = c_q2 * s_q3 + c_q3 * t0;
   const S t2 = c_q2 * c_q3 - s_q3 * t0;
   g[0] = S(0);
-  g[1] = c_q2 * S(-9.81) * p[1];
-  g[2] = (s_q2 * t1 - c_q2 * t2) * S(9.81) * p[4] + S(9.81) * (s_q2 * t2 + c_q2 * t1) * p[5] + S(-9.81) * c_q3 * p[12];
+  g[1] = p[1] * (c_q2 * S(-9.81));
+  g[2] = p[4] * ((s_q2 * t1 - c_q2 * t2) * S(9.81)) + p[5] * (S(9.81) * (s_q2 * t2 + c_q2 * t1)) + p[12] * (S(-9.81) * c_q3);
 }
 
 // FC sgn(qd) + FV v: joint friction
@@ -96,9 +96,9 @@ void friction_torque(const S* qd, const S* v, const S* p, S* f) {
   const S sgn_qd1 = sgn(qd[0]);
   const S sgn_qd2 = sgn(qd[1]);
   const S sgn_qd3 = sgn(qd[2]);
-  f[0] = sgn_qd1 * p[13] + v[0] * p[14];
-  f[1] = sgn_qd2 * p[15] + v[1] * p[16];
-  f[2] = sgn_qd3 * p[17] + v[2] * p[18];
+  f[0] = p[13] * sgn_qd1 + p[14] * v[0];
+  f[1] = p[15] * sgn_qd2 + p[16] * v[1];
+  f[2] = p[17] * sgn_qd3 + p[18] * v[2];
 }
 
 // tau = H qdd + C qd + g + friction
@@ -115,10 +115,10 @@ void inverse_dynamics(const S* q, const S* qd, const S* qdd, const S* p, S* tau)
   const S t5 = qd[2] * qd[2];
   const S t6 = t5 * S(0.13);
   const S t7 = qdd[0] * c_q2 * S(0.36);
+  const S s_q3 = std::sin(q[2]);
   const S c_q3 = std::cos(q[2]);
   const S t8 = -s_q2;
-  const S s_q3 = std::sin(q[2]);
-  const S t9 = c_q3 * t8 + c_q2 * s_q3;
+  const S t9 = c_q2 * s_q3 + c_q3 * t8;
   const S t10 = c_q2 * c_q3 - s_q3 * t8;
   const S t11 = s_q2 * t9 - c_q2 * t10;
   const S t12 = S(0.13) * qdd[2];
@@ -140,9 +140,9 @@ void inverse_dynamics(const S* q, const S* qd, const S* qdd, const S* p, S* tau)
   const S t26 = qdd[0] * S(0.13) + S(0.18) * (qd[0] * (c_q2 * qd[0]));
   const S t27 = t0 * S(0.18) + s_q2 * S(9.81);
   const S sgn_qd3 = sgn(qd[2]);
-  tau[0] = qdd[0] * p[0] + (qdd[1] * s_q2 + c_q2 * t0) * S(0.075) * p[1] + s_q2 * (c_q2 * t2 + t3) * p[2] + ((t4 - t6 - t7) * t11 + (t12 - t15) * t16) * p[4] + (t16 * (t4 - t7 - t6) + t11 * (t15 - t12)) * p[5] + (S(0.18) * (t0 * (t9 * t16 - t10 * t11) + qdd[1] * t17) + qdd[0] * (t18 + t19) * S(0.26)) * p[6] + -(t16 * ((t20 + (t20 - t21 * S(2))) * S(0.5))) * p[7] + (t11 * (t20 - t21) - t16 * (t22 + t14 * t16)) * p[8] + (t5 * t11 - qdd[2] * t16) * p[9] + (t5 * t16 + t11 * qdd[2]) * p[10] + (s_q3 * qdd[2] + t5 * c_q3) * S(0.1) * p[12] + sgn_qd1 * p[13] + qd[0] * p[14];
-  tau[1] = p[1] * (S(0.075) * t3 - t23) + p[2] * -(qd[0] * (qd[0] * (s_q2 * c_q2))) + qdd[1] * p[3] + p[4] * (S(0.18) * (t10 * qdd[2] - t5 * t9 - t11 * t24)) + p[5] * -(S(0.18) * (t16 * t24 + (t9 * qdd[2] + t5 * t10))) + p[6] * (S(0.18) * (qdd[0] * t17)) + sgn_qd2 * p[15] + qd[1] * p[16];
-  tau[2] = p[4] * (t10 * (t25 - t23) + (t16 * t26 + t9 * t27)) + p[5] * (t10 * t27 + (t9 * (t23 - t25) - t11 * t26)) + p[7] * (t16 * (t11 * (qd[0] * qd[0]))) + p[8] * (qd[0] * (qd[0] * (t19 - t18))) + p[9] * -t21 + t22 * p[10] + qdd[2] * p[11] + p[12] * (S(0.1) * (qdd[0] * s_q3) - c_q3 * S(9.81)) + sgn_qd3 * p[17] + qd[2] * p[18];
+  tau[0] = p[0] * qdd[0] + p[1] * ((qdd[1] * s_q2 + c_q2 * t0) * S(0.075)) + p[2] * (s_q2 * (c_q2 * t2 + t3)) + p[4] * ((t4 - t6 - t7) * t11 + (t12 - t15) * t16) + p[5] * (t16 * (t4 - t7 - t6) + t11 * (t15 - t12)) + p[6] * (S(0.18) * (t0 * (t9 * t16 - t10 * t11) + qdd[1] * t17) + qdd[0] * (t18 + t19) * S(0.26)) + p[7] * -(t16 * ((t20 + (t20 - t21 * S(2))) * S(0.5))) + p[8] * (t11 * (t20 - t21) - t16 * (t22 + t14 * t16)) + p[9] * (t5 * t11 - qdd[2] * t16) + p[10] * (t5 * t16 + t11 * qdd[2]) + p[12] * ((s_q3 * qdd[2] + t5 * c_q3) * S(0.1)) + p[13] * sgn_qd1 + qd[0] * p[14];
+  tau[1] = p[1] * (S(0.075) * t3 - t23) + p[2] * -(qd[0] * (qd[0] * (s_q2 * c_q2))) + qdd[1] * p[3] + p[4] * (S(0.18) * (t10 * qdd[2] - t5 * t9 - t11 * t24)) + p[5] * -(S(0.18) * (t16 * t24 + (t9 * qdd[2] + t5 * t10))) + p[6] * (S(0.18) * (qdd[0] * t17)) + p[15] * sgn_qd2 + qd[1] * p[16];
+  tau[2] = p[4] * (t10 * (t25 - t23) + (t16 * t26 + t9 * t27)) + p[5] * (t10 * t27 + (t9 * (t23 - t25) - t11 * t26)) + p[7] * (t16 * (t11 * (qd[0] * qd[0]))) + p[8] * (qd[0] * (qd[0] * (t19 - t18))) + p[9] * -t21 + t22 * p[10] + qdd[2] * p[11] + p[12] * (S(0.1) * (qdd[0] * s_q3) - c_q3 * S(9.81)) + p[17] * sgn_qd3 + qd[2] * p[18];
 }
 
 // Y(q, qd, v, a): Y p = H a + C v + g + FC sgn(qd) + FV v, n x r
@@ -158,10 +158,10 @@ void regressor(const S* q, const S* qd, const S* v, const S* a, S* Y) {
   const S t4 = v[2] * qd[2];
   const S t5 = t4 * S(0.13);
   const S t6 = a[0] * c_q2 * S(0.36);
+  const S s_q3 = std::sin(q[2]);
   const S c_q3 = std::cos(q[2]);
   const S t7 = -s_q2;
-  const S s_q3 = std::sin(q[2]);
-  const S t8 = c_q3 * t7 + c_q2 * s_q3;
+  const S t8 = c_q2 * s_q3 + c_q3 * t7;
   const S t9 = c_q2 * c_q3 - s_q3 * t7;
   const S t10 = s_q2 * t8 - c_q2 * t9;
   const S t11 = S(0.13) * a[2];
@@ -255,10 +255,10 @@ void identification_regressor(const S* q, const S* qd, const S* qdd, S* Y) {
   const S t5 = qd[2] * qd[2];
   const S t6 = t5 * S(0.13);
   const S t7 = qdd[0] * c_q2 * S(0.36);
+  const S s_q3 = std::sin(q[2]);
   const S c_q3 = std::cos(q[2]);
   const S t8 = -s_q2;
-  const S s_q3 = std::sin(q[2]);
-  const S t9 = c_q3 * t8 + c_q2 * s_q3;
+  const S t9 = c_q2 * s_q3 + c_q3 * t8;
   const S t10 = c_q2 * c_q3 - s_q3 * t8;
   const S t11 = s_q2 * t9 - c_q2 * t10;
   const S t12 = S(0.13) * qdd[2];
@@ -352,10 +352,10 @@ void slotine_li_torque(const S* q, const S* qd, const S* v, const S* a, const S*
   const S t4 = v[2] * qd[2];
   const S t5 = t4 * S(0.13);
   const S t6 = a[0] * c_q2 * S(0.36);
+  const S s_q3 = std::sin(q[2]);
   const S c_q3 = std::cos(q[2]);
   const S t7 = -s_q2;
-  const S s_q3 = std::sin(q[2]);
-  const S t8 = c_q3 * t7 + c_q2 * s_q3;
+  const S t8 = c_q2 * s_q3 + c_q3 * t7;
   const S t9 = c_q2 * c_q3 - s_q3 * t7;
   const S t10 = s_q2 * t8 - c_q2 * t9;
   const S t11 = S(0.13) * a[2];
@@ -376,9 +376,9 @@ void slotine_li_torque(const S* q, const S* qd, const S* v, const S* a, const S*
   const S t24 = a[0] * S(0.13) + S(0.18) * (v[0] * (c_q2 * qd[0]));
   const S t25 = t0 * S(0.18) + s_q2 * S(9.81);
   const S sgn_qd3 = sgn(qd[2]);
-  tau[0] = a[0] * p[0] + (a[1] * s_q2 + c_q2 * t0) * S(0.075) * p[1] + s_q2 * (c_q2 * t1 + t2) * p[2] + ((t3 - t5 - t6) * t10 + (t11 - t13) * t14) * p[4] + (t14 * (t3 - t6 - t5) + t10 * (t13 - t11)) * p[5] + (S(0.18) * (t0 * (t8 * t14 - t9 * t10) + a[1] * t15) + a[0] * (t16 + t17) * S(0.26)) * p[6] + -(t14 * ((t18 + (t18 - t19 * S(2))) * S(0.5))) * p[7] + (t10 * (t18 - t19) - t14 * (t20 + t12 * t14)) * p[8] + (t4 * t10 - a[2] * t14) * p[9] + (t4 * t14 + t10 * a[2]) * p[10] + (s_q3 * a[2] + t4 * c_q3) * S(0.1) * p[12] + sgn_qd1 * p[13] + v[0] * p[14];
-  tau[1] = p[1] * (S(0.075) * t2 - t21) + p[2] * -(v[0] * (qd[0] * (s_q2 * c_q2))) + a[1] * p[3] + p[4] * (S(0.18) * (t9 * a[2] - t4 * t8 - t10 * t22)) + p[5] * -(S(0.18) * (t14 * t22 + (t8 * a[2] + t4 * t9))) + p[6] * (S(0.18) * (a[0] * t15)) + sgn_qd2 * p[15] + v[1] * p[16];
-  tau[2] = p[4] * (t9 * (t23 - t21) + (t14 * t24 + t8 * t25)) + p[5] * (t9 * t25 + (t8 * (t21 - t23) - t10 * t24)) + p[7] * (t14 * (t10 * (qd[0] * v[0]))) + p[8] * (v[0] * (qd[0] * (t17 - t16))) + p[9] * -t19 + t20 * p[10] + a[2] * p[11] + p[12] * (S(0.1) * (a[0] * s_q3) - c_q3 * S(9.81)) + sgn_qd3 * p[17] + v[2] * p[18];
+  tau[0] = p[0] * a[0] + p[1] * ((a[1] * s_q2 + c_q2 * t0) * S(0.075)) + p[2] * (s_q2 * (c_q2 * t1 + t2)) + p[4] * ((t3 - t5 - t6) * t10 + (t11 - t13) * t14) + p[5] * (t14 * (t3 - t6 - t5) + t10 * (t13 - t11)) + p[6] * (S(0.18) * (t0 * (t8 * t14 - t9 * t10) + a[1] * t15) + a[0] * (t16 + t17) * S(0.26)) + p[7] * -(t14 * ((t18 + (t18 - t19 * S(2))) * S(0.5))) + p[8] * (t10 * (t18 - t19) - t14 * (t20 + t12 * t14)) + p[9] * (t4 * t10 - a[2] * t14) + p[10] * (t4 * t14 + t10 * a[2]) + p[12] * ((s_q3 * a[2] + t4 * c_q3) * S(0.1)) + p[13] * sgn_qd1 + v[0] * p[14];
+  tau[1] = p[1] * (S(0.075) * t2 - t21) + p[2] * -(v[0] * (qd[0] * (s_q2 * c_q2))) + a[1] * p[3] + p[4] * (S(0.18) * (t9 * a[2] - t4 * t8 - t10 * t22)) + p[5] * -(S(0.18) * (t14 * t22 + (t8 * a[2] + t4 * t9))) + p[6] * (S(0.18) * (a[0] * t15)) + p[15] * sgn_qd2 + v[1] * p[16];
+  tau[2] = p[4] * (t9 * (t23 - t21) + (t14 * t24 + t8 * t25)) + p[5] * (t9 * t25 + (t8 * (t21 - t23) - t10 * t24)) + p[7] * (t14 * (t10 * (qd[0] * v[0]))) + p[8] * (v[0] * (qd[0] * (t17 - t16))) + p[9] * -t19 + t20 * p[10] + a[2] * p[11] + p[12] * (S(0.1) * (a[0] * s_q3) - c_q3 * S(9.81)) + p[17] * sgn_qd3 + v[2] * p[18];
 }
 
 // YTe = Y(q, qd, v, a)^T e without forming Y
@@ -395,10 +395,10 @@ void adaptation_term(const S* q, const S* qd, const S* v, const S* a, const S* e
   const S t5 = v[2] * qd[2];
   const S t6 = t5 * S(0.13);
   const S t7 = a[0] * c_q2 * S(0.36);
+  const S s_q3 = std::sin(q[2]);
   const S c_q3 = std::cos(q[2]);
   const S t8 = -s_q2;
-  const S s_q3 = std::sin(q[2]);
-  const S t9 = c_q3 * t8 + c_q2 * s_q3;
+  const S t9 = c_q2 * s_q3 + c_q3 * t8;
   const S t10 = c_q2 * c_q3 - s_q3 * t8;
   const S t11 = s_q2 * t9 - c_q2 * t10;
   const S t12 = S(0.13) * a[2];
@@ -418,11 +418,11 @@ void adaptation_term(const S* q, const S* qd, const S* v, const S* a, const S* e
   const S sgn_qd1 = sgn(qd[0]);
   const S sgn_qd2 = sgn(qd[1]);
   const S sgn_qd3 = sgn(qd[2]);
-  YTe[0] = e[0] * a[0];
-  YTe[1] = e[0] * ((a[1] * s_q2 + c_q2 * t0) * S(0.075)) + e[1] * (S(0.075) * t1 - t2);
+  YTe[0] = a[0] * e[0];
+  YTe[1] = e[0] * ((a[1] * s_q2 + c_q2 * t0) * S(0.075)) + (S(0.075) * t1 - t2) * e[1];
   YTe[2] = e[0] * (s_q2 * (t1 + c_q2 * t3)) + e[1] * -(v[0] * (qd[0] * (s_q2 * c_q2)));
   YTe[3] = a[1] * e[1];
-  YTe[4] = e[0] * ((t4 - t6 - t7) * t11 + (t12 - t14) * t15) + e[1] * (S(0.18) * (t10 * a[2] - t5 * t9 - t11 * t16)) + e[2] * (t10 * (t17 - t2) + (t15 * t18 + t9 * t19));
+  YTe[4] = e[0] * ((t4 - t6 - t7) * t11 + (t12 - t14) * t15) + e[1] * (S(0.18) * (t10 * a[2] - t5 * t9 - t11 * t16)) + (t10 * (t17 - t2) + (t15 * t18 + t9 * t19)) * e[2];
   YTe[5] = e[0] * (t15 * (t4 - t7 - t6) + t11 * (t14 - t12)) + e[1] * -(S(0.18) * (t15 * t16 + (t9 * a[2] + t5 * t10))) + e[2] * (t10 * t19 + (t9 * (t2 - t17) - t11 * t18));
   YTe[6] = e[0] * (S(0.18) * (t0 * (t9 * t15 - t10 * t11) + a[1] * t20) + a[0] * (t21 + t22) * S(0.26)) + e[1] * (S(0.18) * (a[0] * t20));
   YTe[7] = e[0] * -(t15 * ((t23 + (t23 - t24 * S(2))) * S(0.5))) + e[2] * (t15 * (t11 * (qd[0] * v[0])));
@@ -454,10 +454,10 @@ void control_step(const S* q, const S* qd, const S* v, const S* a, const S* p, c
   const S t6 = v[2] * qd[2];
   const S t7 = t6 * S(0.13);
   const S t8 = a[0] * c_q2 * S(0.36);
+  const S s_q3 = std::sin(q[2]);
   const S c_q3 = std::cos(q[2]);
   const S t9 = -s_q2;
-  const S s_q3 = std::sin(q[2]);
-  const S t10 = c_q3 * t9 + c_q2 * s_q3;
+  const S t10 = c_q2 * s_q3 + c_q3 * t9;
   const S t11 = c_q2 * c_q3 - s_q3 * t9;
   const S t12 = s_q2 * t10 - c_q2 * t11;
   const S t13 = S(0.13) * a[2];
@@ -497,9 +497,9 @@ void control_step(const S* q, const S* qd, const S* v, const S* a, const S* p, c
   const S t45 = -t24;
   const S t46 = S(0.1) * (a[0] * s_q3) - c_q3 * S(9.81);
   const S sgn_qd3 = sgn(qd[2]);
-  tau[0] = a[0] * p[0] + t1 * p[1] + t4 * p[2] + t17 * p[4] + t18 * p[5] + t22 * p[6] + t25 * p[7] + t27 * p[8] + t28 * p[9] + t29 * p[10] + t30 * p[12] + sgn_qd1 * p[13] + v[0] * p[14];
-  tau[1] = p[1] * t32 + p[2] * t33 + a[1] * p[3] + p[4] * t35 + p[5] * t36 + p[6] * t37 + sgn_qd2 * p[15] + v[1] * p[16];
-  tau[2] = p[4] * t41 + p[5] * t42 + p[7] * t43 + p[8] * t44 + p[9] * t45 + t26 * p[10] + a[2] * p[11] + p[12] * t46 + sgn_qd3 * p[17] + v[2] * p[18];
+  tau[0] = p[0] * a[0] + p[1] * t1 + p[2] * t4 + p[4] * t17 + p[5] * t18 + p[6] * t22 + p[7] * t25 + p[8] * t27 + p[9] * t28 + p[10] * t29 + p[12] * t30 + p[13] * sgn_qd1 + v[0] * p[14];
+  tau[1] = p[1] * t32 + p[2] * t33 + a[1] * p[3] + p[4] * t35 + p[5] * t36 + p[6] * t37 + p[15] * sgn_qd2 + v[1] * p[16];
+  tau[2] = p[4] * t41 + p[5] * t42 + p[7] * t43 + p[8] * t44 + p[9] * t45 + t26 * p[10] + a[2] * p[11] + p[12] * t46 + p[17] * sgn_qd3 + v[2] * p[18];
   YTe[0] = a[0] * e[0];
   YTe[1] = t1 * e[0] + t32 * e[1];
   YTe[2] = t4 * e[0] + t33 * e[1];

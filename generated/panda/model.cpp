@@ -1115,13 +1115,13 @@ void friction_torque(const S* qd, const S* v, const S* p, S* f) {
   const S sgn_qd5 = sgn(qd[4]);
   const S sgn_qd6 = sgn(qd[5]);
   const S sgn_qd7 = sgn(qd[6]);
-  f[0] = sgn_qd1 * p[43] + v[0] * p[44];
-  f[1] = sgn_qd2 * p[45] + v[1] * p[46];
-  f[2] = sgn_qd3 * p[47] + v[2] * p[48];
-  f[3] = sgn_qd4 * p[49] + v[3] * p[50];
-  f[4] = sgn_qd5 * p[51] + v[4] * p[52];
-  f[5] = sgn_qd6 * p[53] + v[5] * p[54];
-  f[6] = sgn_qd7 * p[55] + v[6] * p[56];
+  f[0] = p[43] * sgn_qd1 + p[44] * v[0];
+  f[1] = p[45] * sgn_qd2 + p[46] * v[1];
+  f[2] = p[47] * sgn_qd3 + p[48] * v[2];
+  f[3] = p[49] * sgn_qd4 + p[50] * v[3];
+  f[4] = p[51] * sgn_qd5 + p[52] * v[4];
+  f[5] = p[53] * sgn_qd6 + p[54] * v[5];
+  f[6] = p[55] * sgn_qd7 + p[56] * v[6];
 }
 
 // tau = H qdd + C qd + g + friction
@@ -1271,13 +1271,13 @@ void inverse_dynamics(const S* q, const S* qd, const S* qdd, const S* p, S* tau)
   const S sgn_qd5 = sgn(qd[4]);
   const S sgn_qd6 = sgn(qd[5]);
   const S sgn_qd7 = sgn(qd[6]);
-  tau[0] = sgn_qd1 * p[43] + qd[0] * p[44] + (qdd[0] * p[0] - c_q2 * (p[4] * t2 + (qd[1] * t6 + p[6] * qdd[1]) - t4 * t7 - t113) - s_q2 * (c_q3 * t116 + (p[5] * qdd[1] + (p[3] * t2 + (t5 * t7 + p[4] * t19)) - qd[1] * t117) - s_q3 * t123));
-  tau[1] = sgn_qd2 * p[45] + qd[1] * p[46] + (s_q3 * t116 + (c_q3 * t123 + (t36 * p[1] + (p[6] * t19 + (p[5] * t2 + (p[7] * qdd[1] + t4 * t117))) - t9 * p[2] - t5 * t6)));
-  tau[2] = t113 + (sgn_qd3 * p[47] + qd[2] * p[48]);
-  tau[3] = t119 + (sgn_qd4 * p[49] + qd[3] * p[50]);
-  tau[4] = t91 + (sgn_qd5 * p[51] + qd[4] * p[52]);
-  tau[5] = t107 + (sgn_qd6 * p[53] + qd[5] * p[54]);
-  tau[6] = t72 + (sgn_qd7 * p[55] + qd[6] * p[56]);
+  tau[0] = p[43] * sgn_qd1 + p[44] * qd[0] + (qdd[0] * p[0] - c_q2 * (p[4] * t2 + (qd[1] * t6 + p[6] * qdd[1]) - t4 * t7 - t113) - s_q2 * (c_q3 * t116 + (p[5] * qdd[1] + (p[3] * t2 + (t5 * t7 + p[4] * t19)) - qd[1] * t117) - s_q3 * t123));
+  tau[1] = p[45] * sgn_qd2 + qd[1] * p[46] + (s_q3 * t116 + (c_q3 * t123 + (t36 * p[1] + (p[6] * t19 + (p[5] * t2 + (p[7] * qdd[1] + t4 * t117))) - t9 * p[2] - t5 * t6)));
+  tau[2] = t113 + (p[47] * sgn_qd3 + qd[2] * p[48]);
+  tau[3] = t119 + (p[49] * sgn_qd4 + qd[3] * p[50]);
+  tau[4] = t91 + (p[51] * sgn_qd5 + qd[4] * p[52]);
+  tau[5] = t107 + (p[53] * sgn_qd6 + qd[5] * p[54]);
+  tau[6] = t72 + (p[55] * sgn_qd7 + qd[6] * p[56]);
 }
 
 // Y(q, qd, v, a): Y p = H a + C v + g + FC sgn(qd) + FV v, n x r
@@ -3216,13 +3216,13 @@ void slotine_li_torque(const S* q, const S* qd, const S* v, const S* a, const S*
   const S sgn_qd5 = sgn(qd[4]);
   const S sgn_qd6 = sgn(qd[5]);
   const S sgn_qd7 = sgn(qd[6]);
-  tau[0] = sgn_qd1 * p[43] + v[0] * p[44] + (a[0] * p[0] - s_q2 * (c_q3 * t117 + (t4 * p[3] + (a[1] * p[5] + (t16 * p[4] + t36 * t118)) - t6 * t119) - s_q3 * t126) - c_q2 * (t6 * t127 + (a[1] * p[6] + t4 * p[4]) - t128 - t7 * t118) + (c_q2 * (t129 * t135 + p[4] * t137 - t248 - t132 * t249) + s_q2 * (c_q3 * t252 + (p[4] * t149 + (p[3] * t137 + t134 * t249) - t129 * t253) - s_q3 * t259)));
-  tau[1] = sgn_qd2 * p[45] + v[1] * p[46] + (s_q3 * t117 + (c_q3 * t126 + (t4 * p[5] + (t16 * p[6] + (t7 * t119 + (a[1] * p[7] + t18 * p[1]))) - t36 * t127 - t37 * p[2])) - (s_q3 * t252 + (c_q3 * t259 + (p[5] * t137 + (p[6] * t149 + t132 * t253) - t134 * t135))));
-  tau[2] = sgn_qd3 * p[47] + v[2] * p[48] + (t128 - t248);
-  tau[3] = sgn_qd4 * p[49] + v[3] * p[50] + (t125 - t258);
-  tau[4] = sgn_qd5 * p[51] + v[4] * p[52] + (t110 - t225);
-  tau[5] = sgn_qd6 * p[53] + v[5] * p[54] + (t107 - t242);
-  tau[6] = sgn_qd7 * p[55] + v[6] * p[56] + (t87 - t215);
+  tau[0] = p[43] * sgn_qd1 + p[44] * v[0] + (a[0] * p[0] - s_q2 * (c_q3 * t117 + (t4 * p[3] + (a[1] * p[5] + (t16 * p[4] + t36 * t118)) - t6 * t119) - s_q3 * t126) - c_q2 * (t6 * t127 + (a[1] * p[6] + t4 * p[4]) - t128 - t7 * t118) + (c_q2 * (t129 * t135 + p[4] * t137 - t248 - t132 * t249) + s_q2 * (c_q3 * t252 + (p[4] * t149 + (p[3] * t137 + t134 * t249) - t129 * t253) - s_q3 * t259)));
+  tau[1] = p[45] * sgn_qd2 + v[1] * p[46] + (s_q3 * t117 + (c_q3 * t126 + (t4 * p[5] + (t16 * p[6] + (t7 * t119 + (a[1] * p[7] + t18 * p[1]))) - t36 * t127 - t37 * p[2])) - (s_q3 * t252 + (c_q3 * t259 + (p[5] * t137 + (p[6] * t149 + t132 * t253) - t134 * t135))));
+  tau[2] = p[47] * sgn_qd3 + v[2] * p[48] + (t128 - t248);
+  tau[3] = p[49] * sgn_qd4 + v[3] * p[50] + (t125 - t258);
+  tau[4] = p[51] * sgn_qd5 + v[4] * p[52] + (t110 - t225);
+  tau[5] = p[53] * sgn_qd6 + v[5] * p[54] + (t107 - t242);
+  tau[6] = p[55] * sgn_qd7 + v[6] * p[56] + (t87 - t215);
 }
 
 // YTe = Y(q, qd, v, a)^T e without forming Y
@@ -4059,13 +4059,13 @@ void control_step(const S* q, const S* qd, const S* v, const S* a, const S* p, c
   const S t445 = t70 * t70;
   const S t446 = t223 - t426;
   const S t447 = t82 - t422;
-  tau[0] = sgn_qd1 * p[43] + v[0] * p[44] + (a[0] * p[0] - s_q2 * (c_q3 * t144 + (t4 * p[3] + (a[1] * p[5] + (t16 * p[4] + t40 * t145)) - t6 * t146) - s_q3 * t157) - c_q2 * (t6 * t158 + (a[1] * p[6] + t4 * p[4]) - t160 - t7 * t145) + (c_q2 * (t161 * t167 + p[4] * t169 - t301 - t164 * t302) + s_q2 * (c_q3 * t305 + (p[4] * t181 + (p[3] * t169 + t166 * t302) - t161 * t306) - s_q3 * t316)));
-  tau[1] = sgn_qd2 * p[45] + v[1] * p[46] + (s_q3 * t144 + (c_q3 * t157 + (t4 * p[5] + (t16 * p[6] + (t7 * t146 + (a[1] * p[7] + t18 * p[1]))) - t40 * t158 - t43 * p[2])) - (s_q3 * t305 + (c_q3 * t316 + (p[5] * t169 + (p[6] * t181 + t164 * t306) - t166 * t167))));
-  tau[2] = sgn_qd3 * p[47] + v[2] * p[48] + (t160 - t301);
-  tau[3] = sgn_qd4 * p[49] + v[3] * p[50] + (t156 - t315);
-  tau[4] = sgn_qd5 * p[51] + v[4] * p[52] + (t134 - t273);
-  tau[5] = sgn_qd6 * p[53] + v[5] * p[54] + (t130 - t292);
-  tau[6] = sgn_qd7 * p[55] + v[6] * p[56] + (t105 - t263);
+  tau[0] = p[43] * sgn_qd1 + p[44] * v[0] + (a[0] * p[0] - s_q2 * (c_q3 * t144 + (t4 * p[3] + (a[1] * p[5] + (t16 * p[4] + t40 * t145)) - t6 * t146) - s_q3 * t157) - c_q2 * (t6 * t158 + (a[1] * p[6] + t4 * p[4]) - t160 - t7 * t145) + (c_q2 * (t161 * t167 + p[4] * t169 - t301 - t164 * t302) + s_q2 * (c_q3 * t305 + (p[4] * t181 + (p[3] * t169 + t166 * t302) - t161 * t306) - s_q3 * t316)));
+  tau[1] = p[45] * sgn_qd2 + v[1] * p[46] + (s_q3 * t144 + (c_q3 * t157 + (t4 * p[5] + (t16 * p[6] + (t7 * t146 + (a[1] * p[7] + t18 * p[1]))) - t40 * t158 - t43 * p[2])) - (s_q3 * t305 + (c_q3 * t316 + (p[5] * t169 + (p[6] * t181 + t164 * t306) - t166 * t167))));
+  tau[2] = p[47] * sgn_qd3 + v[2] * p[48] + (t160 - t301);
+  tau[3] = p[49] * sgn_qd4 + v[3] * p[50] + (t156 - t315);
+  tau[4] = p[51] * sgn_qd5 + v[4] * p[52] + (t134 - t273);
+  tau[5] = p[53] * sgn_qd6 + v[5] * p[54] + (t130 - t292);
+  tau[6] = p[55] * sgn_qd7 + v[6] * p[56] + (t105 - t263);
   YTe[0] = a[0] * e[0];
   YTe[1] = t18 * e[1];
   YTe[2] = -(t43 * e[1]);

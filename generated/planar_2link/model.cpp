@@ -50,8 +50,8 @@ void gravity_torque(const S* q, const S* p, S* g) {
   const S c_q2 = std::cos(q[1]);
   const S s_q2 = std::sin(q[1]);
   const S s_q1 = std::sin(q[0]);
-  const S t0 = S(9.81) * (c_q1 * c_q2 - s_q2 * s_q1) * p[2];
-  g[0] = c_q1 * S(9.81) * p[0] + t0;
+  const S t0 = p[2] * (S(9.81) * (c_q1 * c_q2 - s_q2 * s_q1));
+  g[0] = p[0] * (c_q1 * S(9.81)) + t0;
   g[1] = t0;
 }
 
@@ -60,8 +60,8 @@ void gravity_torque(const S* q, const S* p, S* g) {
 template <typename S>
 void friction_torque(const S* qd, const S* v, const S* p, S* f) {
   static_cast<void>(qd);  // not needed by this model
-  f[0] = v[0] * p[4];
-  f[1] = v[1] * p[5];
+  f[0] = p[4] * v[0];
+  f[1] = p[5] * v[1];
 }
 
 // tau = H qdd + C qd + g + friction
@@ -82,7 +82,7 @@ void inverse_dynamics(const S* q, const S* qd, const S* qdd, const S* p, S* tau)
   const S t7 = qdd[0] * t6 + c_q1 * S(9.81);
   const S t8 = c_q2 * c_q2 + s_q2 * s_q2;
   const S t9 = p[2] * (c_q2 * t7 - s_q2 * (s_q1 * S(9.81) - t6 * (qd[0] * qd[0])) + S(0.8) * (t0 * t8)) + t0 * p[3];
-  tau[0] = qd[0] * p[4] + ((c_q2 * (t2 + t5) - s_q2 * (c_q2 * t4 - t1 * s_q2)) * S(0.8) + (t9 + (qdd[0] * p[1] + p[0] * t7)) + t6 * (t5 + (t2 + qdd[0] * p[0])));
+  tau[0] = p[4] * qd[0] + ((c_q2 * (t2 + t5) - s_q2 * (c_q2 * t4 - t1 * s_q2)) * S(0.8) + (t9 + (qdd[0] * p[1] + p[0] * t7)) + t6 * (t5 + (t2 + qdd[0] * p[0])));
   tau[1] = qd[1] * p[5] + (t9 + S(0.8) * (t1 * t8));
 }
 
@@ -161,8 +161,8 @@ void slotine_li_torque(const S* q, const S* qd, const S* v, const S* a, const S*
   const S t4 = S(9.81) * (c_q1 * c_q2 - s_q1 * s_q2);
   const S t5 = s_q2 * (t1 - t2);
   const S t6 = c_q2 * (t1 + t2) + t3 * S(8);
-  const S t7 = (a[0] + a[1]) * p[3];
-  tau[0] = (a[0] * t0 * S(2) + c_q1 * S(9.81)) * p[0] + a[0] * p[1] + (a[0] * (c_q2 * t2 + S(4) * t3) * S(0.4) + (t4 + (((qd[0] + qd[1]) * v[1] + qd[1] * v[0]) * t5 + a[1] * t6) * S(0.2))) * p[2] + t7 + v[0] * p[4];
+  const S t7 = p[3] * (a[0] + a[1]);
+  tau[0] = p[0] * (a[0] * t0 * S(2) + c_q1 * S(9.81)) + a[0] * p[1] + p[2] * (a[0] * (c_q2 * t2 + S(4) * t3) * S(0.4) + (t4 + (((qd[0] + qd[1]) * v[1] + qd[1] * v[0]) * t5 + a[1] * t6) * S(0.2))) + t7 + v[0] * p[4];
   tau[1] = t7 + p[2] * (S(0.2) * (a[0] * t6 - t5 * (qd[0] * v[0])) + (t4 + a[1] * (t3 + c_q2 * c_q2) * S(1.6))) + v[1] * p[5];
 }
 
@@ -182,9 +182,9 @@ void adaptation_term(const S* q, const S* qd, const S* v, const S* a, const S* e
   const S t5 = s_q2 * (t1 - t2);
   const S t6 = c_q2 * (t1 + t2) + t3 * S(8);
   const S t7 = a[0] + a[1];
-  YTe[0] = e[0] * (a[0] * t0 * S(2) + c_q1 * S(9.81));
-  YTe[1] = e[0] * a[0];
-  YTe[2] = e[0] * (a[0] * (c_q2 * t2 + S(4) * t3) * S(0.4) + (t4 + (((qd[0] + qd[1]) * v[1] + qd[1] * v[0]) * t5 + a[1] * t6) * S(0.2))) + e[1] * (S(0.2) * (a[0] * t6 - t5 * (qd[0] * v[0])) + (t4 + a[1] * (t3 + c_q2 * c_q2) * S(1.6)));
+  YTe[0] = (a[0] * t0 * S(2) + c_q1 * S(9.81)) * e[0];
+  YTe[1] = a[0] * e[0];
+  YTe[2] = e[0] * (a[0] * (c_q2 * t2 + S(4) * t3) * S(0.4) + (t4 + (((qd[0] + qd[1]) * v[1] + qd[1] * v[0]) * t5 + a[1] * t6) * S(0.2))) + (S(0.2) * (a[0] * t6 - t5 * (qd[0] * v[0])) + (t4 + a[1] * (t3 + c_q2 * c_q2) * S(1.6))) * e[1];
   YTe[3] = e[0] * t7 + e[1] * t7;
   YTe[4] = e[0] * v[0];
   YTe[5] = v[1] * e[1];
@@ -208,9 +208,9 @@ void control_step(const S* q, const S* qd, const S* v, const S* a, const S* p, c
   const S t7 = c_q2 * (t2 + t3) + t4 * S(8);
   const S t8 = a[0] * (c_q2 * t3 + S(4) * t4) * S(0.4) + (t5 + (((qd[0] + qd[1]) * v[1] + qd[1] * v[0]) * t6 + a[1] * t7) * S(0.2));
   const S t9 = a[0] + a[1];
-  const S t10 = t9 * p[3];
+  const S t10 = p[3] * t9;
   const S t11 = S(0.2) * (a[0] * t7 - t6 * (qd[0] * v[0])) + (t5 + a[1] * (t4 + c_q2 * c_q2) * S(1.6));
-  tau[0] = t1 * p[0] + a[0] * p[1] + t8 * p[2] + t10 + v[0] * p[4];
+  tau[0] = p[0] * t1 + a[0] * p[1] + p[2] * t8 + t10 + v[0] * p[4];
   tau[1] = t10 + p[2] * t11 + v[1] * p[5];
   YTe[0] = t1 * e[0];
   YTe[1] = a[0] * e[0];
