@@ -27,7 +27,7 @@ std::vector<Expr> gradient_through(Expr objective, const Bindings& bindings, std
   auto propagate = [&](Expr expression, Expr weight) {
     std::vector<Expr> inner;
     for (const Expr s : free_symbols(expression)) {
-      if (bound_index.count(s) != 0 || is_var.count(s) != 0) inner.push_back(s);
+      if (bound_index.contains(s) || is_var.contains(s)) inner.push_back(s);
     }
     if (inner.empty()) return;
     const std::vector<Expr> partials = gradient(expression, inner);
