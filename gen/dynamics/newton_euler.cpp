@@ -15,22 +15,74 @@ Vec3 add3(const Vec3& a, const Vec3& b) { return kin::operator+(a, b); }
 Vec3 scale(Expr s, const Vec3& v) { return kin::operator*(s, v); }
 Vec3 times(const Mat3& m, const Vec3& v) { return kin::operator*(m, v); }
 
-// Link i's motion in its own coordinates.
-struct LinkMotion {
-  Mat3 rotation;  // this link's frame -> parent's frame
-  Vec3 origin;    // this link's origin in the parent's frame
-  Vec3 axis;      // joint axis in this link's coordinates
-  Vec3 w, wd, a;  // angular velocity, angular acceleration, acceleration of the origin
+// A link's frame relative to its parent and its joint, shared by both recursions.
+struct LinkJoint {
+  Mat3 rotation;     // link -> parent
+  Vec3 origin;       // link origin in parent coordinates
+  Vec3 axis;         // joint axis, link coordinates
+  Vec3 parent_axis;  // joint axis, parent coordinates
+  Vec3 lever;        // from the point the joint turns about to the link origin, link coordinates
   bool prismatic = false;
   bool axis_through_origin = true;  // modified D-H; standard D-H turns about the parent's origin
   std::vector<Expr> coefficient;    // d(joint variable)/d(q_k), numbers
 };
+
+// Every link's joint, or nullopt when a joint variable is not affine in the coordinates.
+std::optional<std::vector<LinkJoint>> link_joints(const robot::RobotDescription& robot, const DynamicModel& model) {
+  const sym::Substitution constants = robot.constant_values();
+  std::vector<LinkJoint> joints(robot.links.size());
+  for (std::size_t i = 0; i < robot.links.size(); ++i) {
+    const robot::Link& link = robot.links[i];
+    LinkJoint& J = joints[i];
+    J.prismatic = link.joint == robot::JointType::Prismatic;
+    const Expr variable = sym::substitute(J.prismatic ? link.d : link.theta, constants);
+    for (const Expr q : model.q) {
+      const Expr c = sym::diff(variable, q);
+      if (!c.is_number()) return std::nullopt;
+      J.coefficient.push_back(c);
+    }
+    const kin::RelativeFrame rel =
+        kin::dh_frame(robot.convention, sym::substitute(link.a, constants), sym::substitute(link.alpha, constants),
+                      sym::substitute(link.d, constants), sym::substitute(link.theta, constants));
+    J.rotation = rel.rotation;
+    J.origin = rel.origin;
+    J.axis = kin::transpose_times(rel.rotation, rel.joint_axis);
+    J.parent_axis = rel.joint_axis;
+    J.axis_through_origin = rel.axis_through_child_origin;
+    J.lever = rel.axis_through_child_origin ? kin::zero_vec() : kin::transpose_times(rel.rotation, rel.origin);
+  }
+  return joints;
+}
 
 // The value of a standard parameter: its symbol, or what the caller substitutes for it.
 Expr parameter_value(const DynamicModel& model, std::span<const Expr> values, int index) {
   if (index < 0) return Expr(0);
   const auto i = static_cast<std::size_t>(index);
   return values.empty() ? model.params.list[i].symbol : values[i];
+}
+
+// A link's mass, first moment and inertia about its origin, in the given parameter values.
+struct LinkInertia {
+  Expr mass;
+  Vec3 moment;
+  Mat3 inertia;
+};
+
+LinkInertia link_inertia(const DynamicModel& model, std::span<const Expr> values, std::size_t link) {
+  const auto& of = model.params.of_link[link];
+  auto P = [&](StandardKind kind) { return parameter_value(model, values, of[static_cast<std::size_t>(kind)]); };
+  return {P(StandardKind::M),
+          {P(StandardKind::MX), P(StandardKind::MY), P(StandardKind::MZ)},
+          {Vec3{P(StandardKind::XX), P(StandardKind::XY), P(StandardKind::XZ)},
+           Vec3{P(StandardKind::XY), P(StandardKind::YY), P(StandardKind::YZ)},
+           Vec3{P(StandardKind::XZ), P(StandardKind::YZ), P(StandardKind::ZZ)}}};
+}
+
+// The generalised force of a joint from the force F and moment N (about the link origin) on
+// its link: the force along the axis, or the moment about the axis line.
+Expr joint_force(const LinkJoint& J, const Vec3& F, const Vec3& N) {
+  if (J.prismatic) return kin::dot(J.axis, F);
+  return kin::dot(J.axis, add3(N, kin::cross(J.lever, F)));
 }
 
 Vec3 bind3(sym::Bindings* bindings, const Vec3& v) {
@@ -44,8 +96,12 @@ std::optional<std::vector<Expr>> newton_euler_torque(const robot::RobotDescripti
                                                      const NewtonEulerInputs& in) {
   const std::size_t n = model.q.size();
   const std::size_t count = robot.links.size();
-  const sym::Substitution constants = robot.constant_values();
-  std::vector<LinkMotion> links(count);
+  const auto joints = link_joints(robot, model);
+  if (!joints) return std::nullopt;  // not affine: no Newton-Euler form
+  struct Motion {
+    Vec3 w, wd, a;  // angular velocity, angular acceleration, acceleration of the origin
+  };
+  std::vector<Motion> links(count);
 
   const Vec3 zero = kin::zero_vec();
   Vec3 base_acceleration = zero;
@@ -55,55 +111,42 @@ std::optional<std::vector<Expr>> newton_euler_torque(const robot::RobotDescripti
 
   // ---- outward: velocities and accelerations, parent before child
   for (std::size_t i = 0; i < count; ++i) {
-    const robot::Link& link = robot.links[i];
-    LinkMotion& L = links[i];
-    L.prismatic = link.joint == robot::JointType::Prismatic;
-    const Expr variable = sym::substitute(L.prismatic ? link.d : link.theta, constants);
+    const LinkJoint& J = (*joints)[i];
+    Motion& L = links[i];
     Expr rate(0), acceleration(0);
     for (std::size_t k = 0; k < n; ++k) {
-      const Expr c = sym::diff(variable, model.q[k]);
-      if (!c.is_number()) return std::nullopt;  // not affine: no Newton-Euler form
-      L.coefficient.push_back(c);
-      rate += c * in.qd[k];
-      acceleration += c * in.qdd[k];
+      rate += J.coefficient[k] * in.qd[k];
+      acceleration += J.coefficient[k] * in.qdd[k];
     }
-    const kin::RelativeFrame rel =
-        kin::dh_frame(robot.convention, sym::substitute(link.a, constants), sym::substitute(link.alpha, constants),
-                      sym::substitute(link.d, constants), sym::substitute(link.theta, constants));
-    L.rotation = rel.rotation;
-    L.origin = rel.origin;
-    L.axis_through_origin = rel.axis_through_child_origin;
-    L.axis = kin::transpose_times(rel.rotation, rel.joint_axis);
-
-    const bool root = link.parent < 0;
-    const LinkMotion* parent = root ? nullptr : &links[static_cast<std::size_t>(link.parent)];
-    const Vec3& wp = root ? zero : parent->w;
-    const Vec3& wdp = root ? zero : parent->wd;
-    const Vec3& ap = root ? base_acceleration : parent->a;
-    const Vec3 w_in = kin::transpose_times(L.rotation, wp);    // parent's rotation, in this frame
-    const Vec3 wd_in = kin::transpose_times(L.rotation, wdp);  // parent's angular acceleration, here
-    if (L.prismatic) {
+    const int parent_index = robot.links[i].parent;
+    const Motion* parent = parent_index < 0 ? nullptr : &links[static_cast<std::size_t>(parent_index)];
+    const Vec3& wp = parent == nullptr ? zero : parent->w;
+    const Vec3& wdp = parent == nullptr ? zero : parent->wd;
+    const Vec3& ap = parent == nullptr ? base_acceleration : parent->a;
+    const Vec3 w_in = kin::transpose_times(J.rotation, wp);    // parent's rotation, in this frame
+    const Vec3 wd_in = kin::transpose_times(J.rotation, wdp);  // parent's angular acceleration, here
+    if (J.prismatic) {
       // a = R^T (a_p + wd_p x p + w_p x (w_p x p) + 2 w_p x (rate z_p) + acc z_p)
-      const Vec3 p = L.origin;
+      const Vec3 p = J.origin;
       Vec3 ao = add3(add3(ap, kin::cross(wdp, p)), kin::cross(wp, kin::cross(wp, p)));
       ao = add3(ao,
-                add3(scale(Expr(2), kin::cross(wp, scale(rate, rel.joint_axis))), scale(acceleration, rel.joint_axis)));
+                add3(scale(Expr(2), kin::cross(wp, scale(rate, J.parent_axis))), scale(acceleration, J.parent_axis)));
       L.w = bind3(in.bindings, w_in);
       L.wd = bind3(in.bindings, wd_in);
-      L.a = bind3(in.bindings, kin::transpose_times(L.rotation, ao));
+      L.a = bind3(in.bindings, kin::transpose_times(J.rotation, ao));
       continue;
     }
-    L.w = bind3(in.bindings, add3(w_in, scale(rate, L.axis)));
-    L.wd = bind3(in.bindings, add3(add3(wd_in, scale(acceleration, L.axis)), kin::cross(w_in, scale(rate, L.axis))));
-    if (L.axis_through_origin) {
+    L.w = bind3(in.bindings, add3(w_in, scale(rate, J.axis)));
+    L.wd = bind3(in.bindings, add3(add3(wd_in, scale(acceleration, J.axis)), kin::cross(w_in, scale(rate, J.axis))));
+    if (J.axis_through_origin) {
       // The origin is on the axis: its acceleration as a point of the parent.
-      const Vec3 p = L.origin;
-      L.a = kin::transpose_times(L.rotation, add3(add3(ap, kin::cross(wdp, p)), kin::cross(wp, kin::cross(wp, p))));
+      const Vec3 p = J.origin;
+      L.a = kin::transpose_times(J.rotation, add3(add3(ap, kin::cross(wdp, p)), kin::cross(wp, kin::cross(wp, p))));
     } else {
       // The axis passes through the parent's origin (a point of both bodies); the origin is
       // carried round it by this link's own motion.
-      const Vec3 r = kin::transpose_times(L.rotation, L.origin);
-      L.a = add3(add3(kin::transpose_times(L.rotation, ap), kin::cross(L.wd, r)), kin::cross(L.w, kin::cross(L.w, r)));
+      const Vec3& r = J.lever;
+      L.a = add3(add3(kin::transpose_times(J.rotation, ap), kin::cross(L.wd, r)), kin::cross(L.w, kin::cross(L.w, r)));
     }
     L.a = bind3(in.bindings, L.a);
   }
@@ -112,39 +155,24 @@ std::optional<std::vector<Expr>> newton_euler_torque(const robot::RobotDescripti
   std::vector<Vec3> f(count, zero), moment(count, zero);
   std::vector<Expr> tau(n, Expr(0));
   for (std::size_t i = count; i-- > 0;) {
-    const LinkMotion& L = links[i];
-    const auto& of = model.params.of_link[i];
-    auto P = [&](StandardKind kind) {
-      return parameter_value(model, in.parameters, of[static_cast<std::size_t>(kind)]);
-    };
-    const Expr mass = P(StandardKind::M);
-    const Vec3 h = {P(StandardKind::MX), P(StandardKind::MY), P(StandardKind::MZ)};
-    const Mat3 inertia = {Vec3{P(StandardKind::XX), P(StandardKind::XY), P(StandardKind::XZ)},
-                          Vec3{P(StandardKind::XY), P(StandardKind::YY), P(StandardKind::YZ)},
-                          Vec3{P(StandardKind::XZ), P(StandardKind::YZ), P(StandardKind::ZZ)}};
+    const LinkJoint& J = (*joints)[i];
+    const Motion& L = links[i];
+    const auto [mass, h, inertia] = link_inertia(model, in.parameters, i);
     // F = m a + wd x h + w x (w x h);  N = I wd + w x (I w) + h x a
     const Vec3 F = add3(add3(scale(mass, L.a), kin::cross(L.wd, h)), kin::cross(L.w, kin::cross(L.w, h)));
     const Vec3 N = add3(add3(times(inertia, L.wd), kin::cross(L.w, times(inertia, L.w))), kin::cross(h, L.a));
     f[i] = bind3(in.bindings, add3(f[i], F));
     moment[i] = bind3(in.bindings, add3(moment[i], N));
-    Expr joint;
-    if (L.prismatic) {
-      joint = kin::dot(L.axis, f[i]);
-    } else if (L.axis_through_origin) {
-      joint = kin::dot(L.axis, moment[i]);
-    } else {
-      const Vec3 r = kin::transpose_times(L.rotation, L.origin);  // from the pivot to this origin
-      joint = kin::dot(L.axis, add3(moment[i], kin::cross(r, f[i])));
-    }
+    const Expr joint = joint_force(J, f[i], moment[i]);
     for (std::size_t k = 0; k < n; ++k) {
-      if (!L.coefficient[k].is_zero()) tau[k] += L.coefficient[k] * joint;
+      if (!J.coefficient[k].is_zero()) tau[k] += J.coefficient[k] * joint;
     }
     const int parent = robot.links[i].parent;
     if (parent >= 0) {
       const auto p = static_cast<std::size_t>(parent);
-      const Vec3 f_parent = times(L.rotation, f[i]);
+      const Vec3 f_parent = times(J.rotation, f[i]);
       f[p] = add3(f[p], f_parent);
-      moment[p] = add3(moment[p], add3(times(L.rotation, moment[i]), kin::cross(L.origin, f_parent)));
+      moment[p] = add3(moment[p], add3(times(J.rotation, moment[i]), kin::cross(J.origin, f_parent)));
     }
   }
   for (std::size_t k = 0; k < n; ++k) {
@@ -154,16 +182,6 @@ std::optional<std::vector<Expr>> newton_euler_torque(const robot::RobotDescripti
 }
 
 namespace {
-
-// A link's frame relative to its parent and its joint, for the composite-rigid-body algorithm.
-struct LinkJoint {
-  Mat3 rotation;  // link -> parent
-  Vec3 origin;    // link origin in parent coordinates
-  Vec3 axis;      // joint axis, link coordinates
-  Vec3 lever;     // from the point the joint turns about to the link origin, link coordinates
-  bool prismatic = false;
-  std::vector<Expr> coefficient;
-};
 
 // [a]x [b]x applied to v, i.e. a x (b x v).
 Vec3 cross_cross(const Vec3& a, const Vec3& b, const Vec3& v) { return kin::cross(a, kin::cross(b, v)); }
@@ -185,46 +203,23 @@ Mat3 shifted_inertia(const Mat3& R, const Mat3& I, Expr m, const Vec3& h_parent,
   return out;
 }
 
-Expr joint_force(const LinkJoint& J, const Vec3& F, const Vec3& N) {
-  if (J.prismatic) return kin::dot(J.axis, F);
-  return kin::dot(J.axis, add3(N, kin::cross(J.lever, F)));
-}
-
 }  // namespace
 
 std::optional<Matrix> composite_rigid_body_mass_matrix(const robot::RobotDescription& robot, const DynamicModel& model,
                                                        std::span<const Expr> parameters, sym::Bindings* bindings) {
   const std::size_t n = model.q.size();
   const std::size_t count = robot.links.size();
-  const sym::Substitution constants = robot.constant_values();
-  std::vector<LinkJoint> joints(count);
+  const auto found = link_joints(robot, model);
+  if (!found) return std::nullopt;
+  const std::vector<LinkJoint>& joints = *found;
   std::vector<Expr> mass(count);
   std::vector<Vec3> moment(count);
   std::vector<Mat3> inertia(count);
   for (std::size_t i = 0; i < count; ++i) {
-    const robot::Link& link = robot.links[i];
-    LinkJoint& J = joints[i];
-    J.prismatic = link.joint == robot::JointType::Prismatic;
-    const Expr variable = sym::substitute(J.prismatic ? link.d : link.theta, constants);
-    for (std::size_t k = 0; k < n; ++k) {
-      const Expr c = sym::diff(variable, model.q[k]);
-      if (!c.is_number()) return std::nullopt;
-      J.coefficient.push_back(c);
-    }
-    const kin::RelativeFrame rel =
-        kin::dh_frame(robot.convention, sym::substitute(link.a, constants), sym::substitute(link.alpha, constants),
-                      sym::substitute(link.d, constants), sym::substitute(link.theta, constants));
-    J.rotation = rel.rotation;
-    J.origin = rel.origin;
-    J.axis = kin::transpose_times(rel.rotation, rel.joint_axis);
-    J.lever = rel.axis_through_child_origin ? kin::zero_vec() : kin::transpose_times(rel.rotation, rel.origin);
-    const auto& of = model.params.of_link[i];
-    auto P = [&](StandardKind kind) { return parameter_value(model, parameters, of[static_cast<std::size_t>(kind)]); };
-    mass[i] = P(StandardKind::M);
-    moment[i] = {P(StandardKind::MX), P(StandardKind::MY), P(StandardKind::MZ)};
-    inertia[i] = {Vec3{P(StandardKind::XX), P(StandardKind::XY), P(StandardKind::XZ)},
-                  Vec3{P(StandardKind::XY), P(StandardKind::YY), P(StandardKind::YZ)},
-                  Vec3{P(StandardKind::XZ), P(StandardKind::YZ), P(StandardKind::ZZ)}};
+    const LinkInertia own = link_inertia(model, parameters, i);
+    mass[i] = own.mass;
+    moment[i] = own.moment;
+    inertia[i] = own.inertia;
   }
   // ---- composite bodies, leaf to root (children come after their parents)
   for (std::size_t i = count; i-- > 0;) {
