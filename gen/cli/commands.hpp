@@ -61,4 +61,7 @@ int run_expr_expand(const ExprOptions& o);
 int run_expr_zero(const ExprOptions& o);
 int run_expr_eval(const ExprOptions& o);
 
+/// `simulate` and `report`: run dyncc-sim (built next to dyncc) with the same arguments.
+int run_simulator(const std::string& command, const std::vector<std::string>& arguments);
+
 }  // namespace dyncc::cli

@@ -95,6 +95,24 @@ void add_output_commands(CLI::App& app, int& exit_code) {
   export_cmd->callback([&exit_code, exp] { exit_code = run_export(*exp); });
 }
 
+// The simulation (sim/) is its own program, dyncc-sim: it links the runtime, which the generator
+// must not. These two commands hand every argument after their name to it, --help included.
+void add_simulation_commands(CLI::App& app, int& exit_code) {
+  struct Entry {
+    const char* name;
+    const char* help;
+  };
+  for (const Entry e :
+       {Entry{"simulate", "Simulate the tele-operated Kraft arm in one of the paper's scenarios (--help for more)"},
+        Entry{"report", "Run every scenario on both plants and write one HTML page with the figures and tables"}}) {
+    auto* sub = app.add_subcommand(e.name, e.help);
+    sub->prefix_command();
+    sub->set_help_flag();
+    const std::string name = e.name;
+    sub->callback([&exit_code, sub, name] { exit_code = run_simulator(name, sub->remaining()); });
+  }
+}
+
 int run(int argc, char** argv) {
   CLI::App app{"dyncc: derives verified rigid-body dynamics from a robot description and emits controller code"};
   app.set_version_flag("--version", std::string("dyncc ") + DYNCC_VERSION);
@@ -103,6 +121,7 @@ int run(int argc, char** argv) {
   add_expr_commands(app, exit_code);
   add_robot_commands(app, exit_code);
   add_output_commands(app, exit_code);
+  add_simulation_commands(app, exit_code);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -1,0 +1,1 @@
+// placeholder: tests written in this issue
