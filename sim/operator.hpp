@@ -38,7 +38,7 @@ class TaskScript {
   double pick_up = 17.0;       // the hook takes the payload as the lift starts
   double lift_end = 20.0;      // the operator's lift is over (the payload is clear in the paper)
   double put_down = 57.0;      // the operator starts lowering it onto the table
-  double release_after = 1.0;  // payload left on the table once it has rested this long
+  double release_after = 0.5;  // payload left on the table once it has rested this long
 
  private:
   std::vector<Segment> segments_;

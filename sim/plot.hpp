@@ -30,7 +30,7 @@ struct Figure {
   std::string title;
   std::string x_label = "time (s)";
   std::vector<Panel> panels;
-  int width = 900;          // px (PNG) / pt (SVG)
+  int width = 900;  // px (PNG) / pt (SVG)
   int panel_height = 220;
 };
 

@@ -87,7 +87,9 @@ class Potentiometers {
 
 }  // namespace
 
-std::vector<std::string> scenario_names() { return {"paper-0.5kg", "paper-1kg", "paper-simplified", "paper-contact"}; }
+std::vector<std::string> scenario_names() {
+  return {"paper-0.5kg", "paper-1kg", "paper-simplified", "paper-contact", "paper-unloaded"};
+}
 
 ScenarioSettings scenario_settings(const std::string& name) {
   ScenarioSettings s;
@@ -102,6 +104,8 @@ ScenarioSettings scenario_settings(const std::string& name) {
   } else if (name == "paper-contact") {
     s.payload = 0.5;
     s.freeze_in_contact = true;
+  } else if (name == "paper-unloaded") {
+    s.payload = 0.0;  // the same task without a payload: the paper's reference run
   } else {
     std::string known;
     for (const auto& n : scenario_names()) known += (known.empty() ? "" : ", ") + n;
@@ -142,17 +146,16 @@ Run simulate(const ScenarioSettings& settings, const std::function<void(double)>
   run.settings = settings;
   const auto periods = static_cast<long>(std::floor(duration * settings.control_rate));
   run.samples.reserve(static_cast<std::size_t>(periods) + 1);
-  double contact_since = -1;
+  double resting = 0;  // s the payload has been on the table since the put-down began
   for (long i = 0; i <= periods; ++i) {
     const double t = static_cast<double>(i) * period;
     // Sensors, then the estimators (the only source of velocity and acceleration).
     slave_estimator.update(slave_pots.read(slave->q()));
     master_estimator.update(master_pots.read(master->q()));
     const ContactState contact = slave->contact();
-    contact_since = contact.active ? (contact_since < 0 ? t : contact_since) : -1;
 
     // Payload events: taken on the hook as the lift starts (the hook is on it then), left on the
-    // table once it has rested there after the put-down.
+    // table once it has rested there (in total, contact may chatter) after the put-down began.
     if (settings.payload > 0 && run.attach_time < 0 && t >= script.pick_up) {
       const double height = forearm_point(slave->q(), kHookInForearm)[2];
       if (height < slave_settings.table.height + 0.01) {
@@ -160,8 +163,8 @@ Run simulate(const ScenarioSettings& settings, const std::function<void(double)>
         run.attach_time = t;
       }
     }
-    if (slave->payload_attached() && t >= script.put_down && contact_since >= 0 &&
-        t - std::max(contact_since, script.put_down) >= script.release_after) {
+    if (t >= script.put_down && contact.active) resting += period;
+    if (slave->payload_attached() && resting >= script.release_after) {
       slave->set_payload_attached(false);
       run.release_time = t;
     }
