@@ -19,7 +19,7 @@ struct Table {
   bool present = true;
   double height = -0.34;      // m, base frame: the payload's top under the task's press pose
   double stiffness = 2.0e4;   // N/m (the rigid plant's unilateral spring)
-  double damping = 60.0;      // N s/m
+  double damping = 400.0;     // N s/m: near critical for the few kg the hook carries
   double friction = 0.6;      // Coulomb coefficient, tangential
 };
 

@@ -1,0 +1,60 @@
+// Running the dyncc command as a subprocess from a test, and fresh paths for its output files.
+#pragma once
+
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+namespace dyncc::test {
+
+/// A path in single quotes for the shell (built with append: GCC 12 warns falsely, -Wrestrict,
+/// on "literal" + std::string at -O3).
+inline std::string quoted(const std::filesystem::path& p) {
+  std::string s = "'";
+  s.append(p.string()).append("'");
+  return s;
+}
+
+struct DynccRun {
+  int exit_code = -1;
+  std::string errors;  // stderr
+};
+
+/// Runs `dyncc ARGUMENTS` (already quoted as needed) with stdout discarded and stderr captured.
+inline DynccRun run_dyncc(const std::string& arguments) {
+  // `timeout` turns a hang into a failure; 2>&1 first sends stderr to the pipe, then stdout away.
+  std::string command = "timeout 120 ";
+  command.append(quoted(DYNCC_BINARY)).append(" ").append(arguments).append(" 2>&1 1>/dev/null");
+  DynccRun run;
+  FILE* pipe = popen(command.c_str(), "r");
+  if (pipe == nullptr) return run;
+  std::array<char, 4096> buffer{};
+  std::size_t read = 0;
+  while ((read = fread(buffer.data(), 1, buffer.size(), pipe)) > 0) run.errors.append(buffer.data(), read);
+  const int status = pclose(pipe);
+  if (WIFEXITED(status)) run.exit_code = WEXITSTATUS(status);
+  return run;
+}
+
+/// A fresh path for an output file of this test.
+inline std::filesystem::path output_path(const std::string& name) {
+  const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+  const std::filesystem::path dir = std::filesystem::path(::testing::TempDir()) / "dyncc_cli_tests";
+  std::filesystem::create_directories(dir);
+  return dir / (std::string(info->test_suite_name()) + "." + info->name() + "." + name);
+}
+
+inline std::string read_text(const std::filesystem::path& p) {
+  std::ifstream in(p);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+}  // namespace dyncc::test
