@@ -15,10 +15,11 @@ inline constexpr int kParameters = Kraft::parameters;
 using Joints = std::array<double, kDof>;
 using Vec3 = std::array<double, 3>;
 using Parameters = std::array<double, kParameters>;
+using MassMatrix = std::array<double, static_cast<std::size_t>(kDof) * kDof>;  // row-major
 
 /// A point mass (a small sphere) hung on the hook.
 struct Payload {
-  double mass = 0.0;                      // kg; 0 = no payload
+  double mass = 0.0;                     // kg; 0 = no payload
   Vec3 position_in_forearm{0.40, 0, 0};  // m, in the forearm's D-H frame (x along the forearm)
   double radius = 0.03;                  // m, for its own inertia
 };

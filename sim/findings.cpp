@@ -9,13 +9,13 @@ namespace dyncc::sim {
 namespace {
 
 // The thresholds.
-constexpr double kAdaptiveLoadedVsUnloaded = 2.0;  // (a) adaptive, holding vs unloaded
-constexpr double kFixedVsAdaptive = 3.0;           // (a) fixed at least this much worse
-constexpr double kJointOneUnaffected = 1.5;        // (b) joint 1, loaded vs unloaded, both modes
-constexpr double kHeavyVsLight = 1.5;              // (c) 1 kg vs 0.5 kg, adaptive
-constexpr double kSimplifiedVsFull = 1.5;          // (d)
-constexpr double kFrozenDriftShare = 0.25;         // (e) frozen drift at most this share of the free one
-constexpr double kMinimumDrift = 0.10;             // (e) the free estimates move by >= 10 %
+constexpr double kAdaptiveLoadedVsUnloaded = 2.0;             // (a) adaptive, holding vs unloaded
+constexpr double kFixedVsAdaptive = 3.0;                      // (a) fixed at least this much worse
+constexpr double kJointOneUnaffected = 1.5;                   // (b) joint 1, loaded vs unloaded, both modes
+constexpr double kHeavyVsLight = 1.5;                         // (c) 1 kg vs 0.5 kg, adaptive
+constexpr double kSimplifiedVsFull = 1.5;                     // (d)
+constexpr double kFrozenDriftShare = 0.25;                    // (e) frozen drift at most this share of the free one
+constexpr double kMinimumDrift = 0.10;                        // (e) the free estimates move by >= 10 %
 constexpr double kFewSecondsMin = 0.2, kFewSecondsMax = 6.0;  // (f)
 
 std::string ratio(double a, double b) { return fmt::format("{:.4f}/{:.4f} = {:.2f}", a, b, a / b); }
@@ -64,7 +64,10 @@ std::vector<Finding> paper_findings(const PaperRuns& runs) {
   const Summary& unloaded_adaptive = runs.summary("paper-unloaded", true);
   const Summary& unloaded_fixed = runs.summary("paper-unloaded", false);
   {
-    Finding f{"a", "Adaptive: s2, s3 while holding 0.5 kg within 2x of the unloaded arm; fixed model: at least 3x the adaptive ones", "", true};
+    Finding f{"a",
+              "Adaptive: s2, s3 while holding 0.5 kg within 2x of the unloaded arm; fixed model: at least 3x the "
+              "adaptive ones",
+              "", true};
     for (const int k : {1, 2}) {
       const double loaded = adaptive.rms_holding[k], free = unloaded_adaptive.rms_holding[k];
       const double worse = fixed.rms_holding[k];
@@ -76,11 +79,12 @@ std::vector<Finding> paper_findings(const PaperRuns& runs) {
   }
   {
     Finding f{"b", "Joint 1 (axis parallel to gravity) is barely affected by the payload in either mode", "", true};
-    for (const auto& [loaded, free, mode] : {std::tuple{&adaptive, &unloaded_adaptive, "adaptive"},
-                                             std::tuple{&fixed, &unloaded_fixed, "fixed"}}) {
+    for (const auto& [loaded, free, mode] :
+         {std::tuple{&adaptive, &unloaded_adaptive, "adaptive"}, std::tuple{&fixed, &unloaded_fixed, "fixed"}}) {
       const double r = loaded->rms_holding[0] / free->rms_holding[0];
       f.holds = f.holds && r <= kJointOneUnaffected && r >= 1.0 / kJointOneUnaffected;
-      f.evidence += fmt::format("s1 {} loaded/unloaded {}. ", mode, ratio(loaded->rms_holding[0], free->rms_holding[0]));
+      f.evidence +=
+          fmt::format("s1 {} loaded/unloaded {}. ", mode, ratio(loaded->rms_holding[0], free->rms_holding[0]));
     }
     out.push_back(f);
   }
@@ -89,7 +93,8 @@ std::vector<Finding> paper_findings(const PaperRuns& runs) {
     Finding f{"c", "Adaptive with 1 kg stays within 1.5x of adaptive with 0.5 kg", "", true};
     for (const int k : {1, 2}) {
       f.holds = f.holds && heavy.rms_holding[k] <= kHeavyVsLight * adaptive.rms_holding[k];
-      f.evidence += fmt::format("s{} holding 1 kg/0.5 kg {}. ", k + 1, ratio(heavy.rms_holding[k], adaptive.rms_holding[k]));
+      f.evidence +=
+          fmt::format("s{} holding 1 kg/0.5 kg {}. ", k + 1, ratio(heavy.rms_holding[k], adaptive.rms_holding[k]));
     }
     out.push_back(f);
   }
@@ -98,7 +103,8 @@ std::vector<Finding> paper_findings(const PaperRuns& runs) {
     Finding f{"d", "The simplified controller (no velocity terms) stays within 1.5x of the full one", "", true};
     for (const int k : {1, 2}) {
       f.holds = f.holds && simple.rms_holding[k] <= kSimplifiedVsFull * adaptive.rms_holding[k];
-      f.evidence += fmt::format("s{} holding simplified/full {}. ", k + 1, ratio(simple.rms_holding[k], adaptive.rms_holding[k]));
+      f.evidence +=
+          fmt::format("s{} holding simplified/full {}. ", k + 1, ratio(simple.rms_holding[k], adaptive.rms_holding[k]));
     }
     out.push_back(f);
   }
@@ -111,13 +117,15 @@ std::vector<Finding> paper_findings(const PaperRuns& runs) {
     f.holds = adaptive.press_drift >= kMinimumDrift && frozen.press_drift <= kFrozenDriftShare * adaptive.press_drift &&
               adaptive.lift_delay > frozen.lift_delay && frozen.lift_delay >= 0;
     f.evidence = fmt::format(
-        "first-moment drift over the press: adapting {:.1f} %, frozen {:.1f} %; lift-off after the operator's lift start: "
+        "first-moment drift over the press: adapting {:.1f} %, frozen {:.1f} %; lift-off after the operator's lift "
+        "start: "
         "adapting {:.2f} s, frozen {:.2f} s.",
         100 * adaptive.press_drift, 100 * frozen.press_drift, adaptive.lift_delay, frozen.lift_delay);
     out.push_back(f);
   }
   {
-    Finding f{"f", "After the pick-up the adaptive errors settle within a few seconds (the fixed model's do not)", "", true};
+    Finding f{"f", "After the pick-up the adaptive errors settle within a few seconds (the fixed model's do not)", "",
+              true};
     f.holds = adaptive.reconvergence >= kFewSecondsMin && adaptive.reconvergence <= kFewSecondsMax &&
               (fixed.reconvergence < 0 || fixed.reconvergence > adaptive.reconvergence);
     f.evidence = fmt::format("settling after lift-off: adaptive {}, fixed {}.",

@@ -1,12 +1,12 @@
 // dyncc-sim: the tele-operation simulation's command line, run as `dyncc simulate` and
 // `dyncc report` (gen/cli forwards to it; see sim/README.md).
+#include <fmt/format.h>
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
-#include <fmt/format.h>
 #include <fstream>
 #include <stdexcept>
 #include <string>
@@ -31,7 +31,8 @@ class ProgressBar {
     if (done == last_ && label == label_ && fraction < 1.0) return;
     last_ = done;
     label_ = label;
-    std::fprintf(stderr, "\r%-36s [%s%s] %3.0f%% %5.1f s", label.c_str(), std::string(static_cast<std::size_t>(done), '#').c_str(),
+    std::fprintf(stderr, "\r%-36s [%s%s] %3.0f%% %5.1f s", label.c_str(),
+                 std::string(static_cast<std::size_t>(done), '#').c_str(),
                  std::string(static_cast<std::size_t>(width - done), '.').c_str(), 100 * fraction, elapsed);
     if (fraction >= 1.0) std::fputc('\n', stderr);
     std::fflush(stderr);
@@ -72,7 +73,8 @@ int run_simulate(const SimulateOptions& o) {
   s.duration = o.duration;
   if (o.payload >= 0) s.payload = o.payload;
   const std::filesystem::path out =
-      o.out.empty() ? std::filesystem::path("sim-out") / fmt::format("{}-{}-{}", o.scenario, o.plant, s.adaptation ? "adaptive" : "fixed")
+      o.out.empty() ? std::filesystem::path("sim-out") /
+                          fmt::format("{}-{}-{}", o.scenario, o.plant, s.adaptation ? "adaptive" : "fixed")
                     : std::filesystem::path(o.out);
   std::filesystem::create_directories(out);
   ProgressBar bar;
@@ -102,9 +104,11 @@ int run_report(const ReportOptions& o) {
   write_report(plants, o.out);
   bool all = true;
   for (const PaperRuns& p : plants) {
-    std::printf("\n== plant %s ==\n%s\n", p.plant == PlantKind::mujoco ? "mujoco" : "dyncc", summary_table(p.summaries).c_str());
+    std::printf("\n== plant %s ==\n%s\n", p.plant == PlantKind::mujoco ? "mujoco" : "dyncc",
+                summary_table(p.summaries).c_str());
     for (const Finding& f : paper_findings(p)) {
-      std::printf("(%s) %-13s %s\n    %s\n", f.id.c_str(), f.holds ? "holds" : "DOES NOT HOLD", f.claim.c_str(), f.evidence.c_str());
+      std::printf("(%s) %-13s %s\n    %s\n", f.id.c_str(), f.holds ? "holds" : "DOES NOT HOLD", f.claim.c_str(),
+                  f.evidence.c_str());
       all = all && f.holds;
     }
   }
@@ -112,32 +116,38 @@ int run_report(const ReportOptions& o) {
   return all ? 0 : 1;
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
+int run(int argc, char** argv) {
   CLI::App app{"dyncc-sim: the tele-operated Kraft arm (run as `dyncc simulate` and `dyncc report`)"};
   app.require_subcommand(1);
   int exit_code = 0;
   SimulateOptions sim;
   auto* simulate_cmd = app.add_subcommand("simulate", "One scenario: CSV log, figures and a summary");
-  simulate_cmd->add_option("--scenario", sim.scenario, "paper-0.5kg, paper-1kg, paper-simplified, paper-contact or paper-unloaded")
+  simulate_cmd
+      ->add_option("--scenario", sim.scenario,
+                   "paper-0.5kg, paper-1kg, paper-simplified, paper-contact or paper-unloaded")
       ->required()
       ->check(CLI::IsMember(scenario_names()));
-  simulate_cmd->add_option("--adaptation", sim.adaptation, "on (adaptive) or off (fixed model)")->check(CLI::IsMember({"on", "off"}));
+  simulate_cmd->add_option("--adaptation", sim.adaptation, "on (adaptive) or off (fixed model)")
+      ->check(CLI::IsMember({"on", "off"}));
   simulate_cmd->add_option("--plant", sim.plant, "dyncc (generated model, RK4) or mujoco (the exported MJCF)")
       ->check(CLI::IsMember({"dyncc", "mujoco"}));
-  simulate_cmd->add_option("--payload", sim.payload, "payload mass (kg) instead of the scenario's")->check(CLI::Range(0.0, 3.0));
+  simulate_cmd->add_option("--payload", sim.payload, "payload mass (kg) instead of the scenario's")
+      ->check(CLI::Range(0.0, 3.0));
   simulate_cmd->add_option("--out", sim.out, "output folder (default sim-out/SCENARIO-PLANT-MODE)");
-  simulate_cmd->add_option("--master-csv", sim.master_csv, "replay this master trajectory (t,q1,q2,q3) instead of the operator model");
+  simulate_cmd->add_option("--master-csv", sim.master_csv,
+                           "replay this master trajectory (t,q1,q2,q3) instead of the operator model");
   simulate_cmd->add_option("--mjcf", sim.mjcf, "the exported Kraft MJCF (default: kraft.xml next to this program)");
   simulate_cmd->add_option("--seed", sim.seed, "potentiometer noise seed");
-  simulate_cmd->add_option("--duration", sim.duration, "seconds to simulate (default: the whole task)")->check(CLI::Range(0.0, 3600.0));
+  simulate_cmd->add_option("--duration", sim.duration, "seconds to simulate (default: the whole task)")
+      ->check(CLI::Range(0.0, 3600.0));
   simulate_cmd->callback([&] { exit_code = run_simulate(sim); });
 
   ReportOptions report;
-  auto* report_cmd = app.add_subcommand("report", "Every scenario, adaptive and fixed, on both plants: one HTML page; exit 1 if a finding fails");
+  auto* report_cmd = app.add_subcommand(
+      "report", "Every scenario, adaptive and fixed, on both plants: one HTML page; exit 1 if a finding fails");
   report_cmd->add_option("--out", report.out, "output folder (default report/)");
-  report_cmd->add_option("--plant", report.plant, "dyncc, mujoco or both")->check(CLI::IsMember({"dyncc", "mujoco", "both"}));
+  report_cmd->add_option("--plant", report.plant, "dyncc, mujoco or both")
+      ->check(CLI::IsMember({"dyncc", "mujoco", "both"}));
   report_cmd->add_option("--mjcf", report.mjcf, "the exported Kraft MJCF (default: kraft.xml next to this program)");
   report_cmd->callback([&] { exit_code = run_report(report); });
   try {
@@ -153,4 +163,15 @@ int main(int argc, char** argv) {
     return kBadInput;
   }
   return exit_code;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    return run(argc, argv);
+  } catch (...) {  // the messages of known failures are printed in run; this is the last resort
+    std::fputs("dyncc: internal error\n", stderr);
+  }
+  return kBadInput;
 }

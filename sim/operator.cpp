@@ -1,8 +1,9 @@
 #include "operator.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
-#include <fmt/format.h>
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
@@ -39,11 +40,11 @@ TaskScript TaskScript::paper() {
   move(20.0, 23.0, kLift, kLift);   // hold
   sweep(23.0, 0, 0.50, 5.0, 2);     // joint 1 back and forth
   move(33.0, 35.0, kLift, kLift);
-  sweep(35.0, 1, 0.22, 4.5, 2);     // joint 2
+  sweep(35.0, 1, 0.22, 4.5, 2);  // joint 2
   move(44.0, 45.0, kLift, kLift);
-  sweep(45.0, 2, 0.28, 4.5, 2);     // joint 3
-  move(54.0, 57.0, kLift, kAbove);  // back over the table
-  move(57.0, 59.5, kAbove, kPress); // put the payload down
+  sweep(45.0, 2, 0.28, 4.5, 2);      // joint 3
+  move(54.0, 57.0, kLift, kAbove);   // back over the table
+  move(57.0, 59.5, kAbove, kPress);  // put the payload down
   move(59.5, 61.0, kPress, kPress);
   move(61.0, 64.0, kPress, kHome);  // away
   move(64.0, 66.0, kHome, kHome);
@@ -111,7 +112,8 @@ RecordedMaster RecordedMaster::load(const std::string& path) {
   for (int k = 0; k < kDof; ++k) {
     const std::string name = fmt::format("q{}", k + 1);
     columns[static_cast<std::size_t>(k)] = find(name, fmt::format("master_{}", name));
-    if (columns[static_cast<std::size_t>(k)] < 0) fail(1, 1, fmt::format("header has no column {} (or master_{})", name, name));
+    if (columns[static_cast<std::size_t>(k)] < 0)
+      fail(1, 1, fmt::format("header has no column {} (or master_{})", name, name));
   }
   if (time_column < 0) fail(1, 1, "header has no column t");
   RecordedMaster m;
@@ -130,7 +132,8 @@ RecordedMaster RecordedMaster::load(const std::string& path) {
       begin = comma + 1;
     }
     auto number = [&](int column, const std::string& field) {
-      if (column >= static_cast<int>(cells.size())) fail(line, static_cast<int>(text.size()) + 1, "missing field " + field);
+      if (column >= static_cast<int>(cells.size()))
+        fail(line, static_cast<int>(text.size()) + 1, "missing field " + field);
       const std::string& cell = cells[static_cast<std::size_t>(column)];
       std::size_t used = 0;
       double value = 0;
@@ -140,14 +143,18 @@ RecordedMaster RecordedMaster::load(const std::string& path) {
         used = 0;
       }
       if (used == 0 || used != cell.size() || !std::isfinite(value)) {
-        fail(line, starts[static_cast<std::size_t>(column)], "field " + field + ": expected a finite number, got '" + cell + "'");
+        fail(line, starts[static_cast<std::size_t>(column)],
+             fmt::format("field {}: expected a finite number, got '{}'", field, cell));
       }
       return value;
     };
     const double t = number(time_column, "t");
-    if (!m.t_.empty() && t <= m.t_.back()) fail(line, starts[static_cast<std::size_t>(time_column)], "field t: time must increase");
+    if (!m.t_.empty() && t <= m.t_.back())
+      fail(line, starts[static_cast<std::size_t>(time_column)], "field t: time must increase");
     Joints q{};
-    for (int k = 0; k < kDof; ++k) q[static_cast<std::size_t>(k)] = number(columns[static_cast<std::size_t>(k)], header[static_cast<std::size_t>(columns[static_cast<std::size_t>(k)])]);
+    for (int k = 0; k < kDof; ++k)
+      q[static_cast<std::size_t>(k)] = number(columns[static_cast<std::size_t>(k)],
+                                              header[static_cast<std::size_t>(columns[static_cast<std::size_t>(k)])]);
     m.t_.push_back(t);
     m.q_.push_back(q);
   }

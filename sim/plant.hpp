@@ -17,17 +17,17 @@ namespace dyncc::sim {
 /// same distance below the hook) the table under the payload's bottom after it.
 struct Table {
   bool present = true;
-  double height = -0.34;      // m, base frame: the payload's top under the task's press pose
-  double stiffness = 2.0e4;   // N/m (the rigid plant's unilateral spring)
-  double damping = 400.0;     // N s/m: near critical for the few kg the hook carries
-  double friction = 0.6;      // Coulomb coefficient, tangential
+  double height = -0.34;     // m, base frame: the payload's top under the task's press pose
+  double stiffness = 2.0e4;  // N/m (the rigid plant's unilateral spring)
+  double damping = 400.0;    // N s/m: near critical for the few kg the hook carries
+  double friction = 0.6;     // Coulomb coefficient, tangential
 };
 
 struct PlantSettings {
-  Payload payload;            // its mass is carried only while attached
+  Payload payload;  // its mass is carried only while attached
   Table table;
-  double rate = 2000.0;       // integration steps per second (>= 1 kHz)
-  bool joint_friction = true; // Coulomb and viscous joint friction of the description
+  double rate = 2000.0;        // integration steps per second (>= 1 kHz)
+  bool joint_friction = true;  // Coulomb and viscous joint friction of the description
 };
 
 struct ContactState {

@@ -56,7 +56,8 @@ Figure angles(const Run& run) {
     Panel p;
     p.title = fmt::format("joint {}", k + 1);
     p.y_label = "rad";
-    p.series.push_back(series(run, "master", [k](const Sample& s) { return s.master[static_cast<std::size_t>(k)]; }, true));
+    p.series.push_back(series(
+        run, "master", [k](const Sample& s) { return s.master[static_cast<std::size_t>(k)]; }, true));
     p.series.push_back(series(run, "slave", [k](const Sample& s) { return s.slave[static_cast<std::size_t>(k)]; }));
     p.shaded = contact_intervals(run);
     f.panels.push_back(std::move(p));
@@ -75,7 +76,8 @@ Figure errors(const std::vector<std::pair<const Run*, std::string>>& runs, const
     p.y_label = "rad/s";
     bool first = true;
     for (const auto& [run, label] : runs) {
-      p.series.push_back(series(*run, label, [k](const Sample& s) { return s.s[static_cast<std::size_t>(k)]; }, !first));
+      p.series.push_back(series(
+          *run, label, [k](const Sample& s) { return s.s[static_cast<std::size_t>(k)]; }, !first));
       if (first) p.shaded = contact_intervals(*run);
       first = false;
     }
@@ -95,8 +97,9 @@ Figure estimates(const std::vector<std::pair<const Run*, std::string>>& runs, co
     for (const auto& [run, label] : runs) {
       for (int b = 0; b < kParameters; ++b) {
         if (Kraft::parameter_names[b][0] != initial) continue;
-        p.series.push_back(series(*run, label.empty() ? Kraft::parameter_names[b] : fmt::format("{} {}", Kraft::parameter_names[b], label),
-                                  [b](const Sample& s) { return s.estimate[static_cast<std::size_t>(b)]; }, !first));
+        p.series.push_back(series(
+            *run, label.empty() ? Kraft::parameter_names[b] : fmt::format("{} {}", Kraft::parameter_names[b], label),
+            [b](const Sample& s) { return s.estimate[static_cast<std::size_t>(b)]; }, !first));
       }
       if (first) p.shaded = contact_intervals(*run);
       first = false;
@@ -118,10 +121,14 @@ Figure estimates(const std::vector<std::pair<const Run*, std::string>>& runs, co
 std::string escape(const std::string& text) {
   std::string out;
   for (const char c : text) {
-    if (c == '<') out += "&lt;";
-    else if (c == '>') out += "&gt;";
-    else if (c == '&') out += "&amp;";
-    else out += c;
+    if (c == '<')
+      out += "&lt;";
+    else if (c == '>')
+      out += "&gt;";
+    else if (c == '&')
+      out += "&amp;";
+    else
+      out += c;
   }
   return out;
 }
@@ -141,8 +148,10 @@ void write_run_figures(const Run& run, const std::filesystem::path& dir) {
 void write_report(const std::vector<PaperRuns>& plants, const std::filesystem::path& dir) {
   std::filesystem::create_directories(dir);
   std::string html =
-      "<!doctype html>\n<html><head><meta charset=\"utf-8\"><title>dyncc: the Kraft tele-operation experiments</title>\n"
-      "<style>body{font-family:sans-serif;max-width:1000px;margin:auto}img{width:100%}pre{font-size:11px;overflow-x:auto}"
+      "<!doctype html>\n<html><head><meta charset=\"utf-8\"><title>dyncc: the Kraft tele-operation "
+      "experiments</title>\n"
+      "<style>body{font-family:sans-serif;max-width:1000px;margin:auto}img{width:100%}pre{font-size:11px;overflow-x:"
+      "auto}"
       "td,th{padding:2px 8px;text-align:left;vertical-align:top}.ok{color:#070}.no{color:#b00}</style></head><body>\n"
       "<h1>Adaptive vs fixed-model tele-operation of the Kraft arm</h1>\n"
       "<p>Carignan, Tarrant, Mosier: <i>An adaptive controller for enhancing operator performance during "
@@ -175,7 +184,8 @@ void write_report(const std::vector<PaperRuns>& plants, const std::filesystem::p
                  sub / "contact-errors");
 
     html += fmt::format("<h2>Plant: {}</h2>\n<table><tr><th></th><th>finding</th><th>measured</th></tr>\n",
-                        name == "mujoco" ? "MuJoCo (exported MJCF, its own contact and friction)" : "dyncc (generated model, RK4)");
+                        name == "mujoco" ? "MuJoCo (exported MJCF, its own contact and friction)"
+                                         : "dyncc (generated model, RK4)");
     for (const Finding& f : paper_findings(p)) {
       html += fmt::format("<tr><td class=\"{}\">({}) {}</td><td>{}</td><td>{}</td></tr>\n", f.holds ? "ok" : "no", f.id,
                           f.holds ? "holds" : "does not hold", escape(f.claim), escape(f.evidence));

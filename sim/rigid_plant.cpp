@@ -16,7 +16,7 @@ namespace gen = dyncc::generated::kraft_right;
 constexpr double kFrictionVelocityScale = 0.01;  // rad/s over which Coulomb friction turns over
 constexpr double kSlipVelocityScale = 0.005;     // m/s, the same for the tangential contact force
 
-Joints solve_spd(std::array<double, kDof * kDof> h, Joints b) {
+Joints solve_spd(MassMatrix h, Joints b) {
   constexpr int n = kDof;
   for (int j = 0; j < n; ++j) {
     for (int k = 0; k < j; ++k) h[j * n + j] -= h[j * n + k] * h[j * n + k];
@@ -39,8 +39,7 @@ Joints solve_spd(std::array<double, kDof * kDof> h, Joints b) {
 
 class RigidPlant final : public Plant {
  public:
-  explicit RigidPlant(const PlantSettings& settings)
-      : settings_(settings), unloaded_(rigid_part(true_parameters({}))) {
+  explicit RigidPlant(const PlantSettings& settings) : settings_(settings), unloaded_(rigid_part(true_parameters({}))) {
     Payload carried = settings.payload;
     loaded_ = rigid_part(true_parameters(carried));
     const Parameters nominal = true_parameters({});
@@ -109,7 +108,7 @@ class RigidPlant final : public Plant {
 
   [[nodiscard]] Joints acceleration(const Joints& q, const Joints& qd, const Joints& tau) const {
     const Parameters& p = attached_ ? loaded_ : unloaded_;
-    std::array<double, kDof * kDof> h{};
+    MassMatrix h{};
     gen::mass_matrix<double>(q.data(), p.data(), h.data());
     const Joints zero{};
     Joints bias{};  // C qd + g
@@ -152,6 +151,8 @@ class RigidPlant final : public Plant {
 
 }  // namespace
 
-std::unique_ptr<Plant> make_rigid_plant(const PlantSettings& settings) { return std::make_unique<RigidPlant>(settings); }
+std::unique_ptr<Plant> make_rigid_plant(const PlantSettings& settings) {
+  return std::make_unique<RigidPlant>(settings);
+}
 
 }  // namespace dyncc::sim

@@ -137,7 +137,8 @@ Run simulate(const ScenarioSettings& settings, const std::function<void(double)>
   for (int b = 0; b < kParameters; ++b) initial[b] = Kraft::initial_estimate[b];
   Controller controller(controller_settings(settings), initial);
   const double period = 1.0 / settings.control_rate;
-  Estimator slave_estimator(period, settings.estimator_bandwidth), master_estimator(period, settings.estimator_bandwidth);
+  Estimator slave_estimator(period, settings.estimator_bandwidth),
+      master_estimator(period, settings.estimator_bandwidth);
   Potentiometers slave_pots(settings.quantum, settings.noise, settings.seed);
   Potentiometers master_pots(settings.quantum, settings.noise, settings.seed + 1000);
   const Parameters master_parameters = true_parameters({});
@@ -170,9 +171,9 @@ Run simulate(const ScenarioSettings& settings, const std::function<void(double)>
     }
 
     controller.set_adaptation(settings.adaptation && !(settings.freeze_in_contact && contact.active));
-    const auto step = controller.step(slave_estimator.position(), slave_estimator.velocity(),
-                                      master_estimator.position(), master_estimator.velocity(),
-                                      master_estimator.acceleration());
+    const auto step =
+        controller.step(slave_estimator.position(), slave_estimator.velocity(), master_estimator.position(),
+                        master_estimator.velocity(), master_estimator.acceleration());
     const Joints tau = clamp(step.tau, settings.torque_limit);
 
     Sample sample;
@@ -190,7 +191,7 @@ Run simulate(const ScenarioSettings& settings, const std::function<void(double)>
     if (i == periods) break;
 
     // The master feels the slave's feedback with the sign reversed: +lambda H^ eps.
-    std::array<double, kDof * kDof> h{};
+    MassMatrix h{};
     gen::mass_matrix<double>(slave_estimator.position().data(), controller.estimate().data(), h.data());
     Joints reflected{};
     for (int r = 0; r < kDof; ++r) {

@@ -1,16 +1,17 @@
 #include "summary.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
-#include <fmt/format.h>
 
 #include "operator.hpp"
 
 namespace dyncc::sim {
 namespace {
 
-constexpr double kSettleWindow = 1.0;   // s: trailing window of the settling test
-constexpr double kSettleFactor = 1.5;   // settled when the trailing RMS is within this of the unloaded level
+constexpr double kSettleWindow = 1.0;  // s: trailing window of the settling test
+constexpr double kSettleFactor = 1.5;  // settled when the trailing RMS is within this of the unloaded level
 
 const Sample* at_time(const Run& run, double t) {
   for (const Sample& s : run.samples) {
@@ -85,7 +86,10 @@ Summary summarize(const Run& run) {
         break;
       }
     }
-    for (double t = out.lift_off + kSettleWindow; t <= search_end; t += 0.05) {
+    constexpr double kStep = 0.05;  // s between settling tests
+    const int steps = static_cast<int>((search_end - out.lift_off - kSettleWindow) / kStep);
+    for (int i = 0; i <= steps; ++i) {
+      const double t = out.lift_off + kSettleWindow + i * kStep;
       const double window = std::hypot(rms(run, 1, t - kSettleWindow, t), rms(run, 2, t - kSettleWindow, t));
       if (window <= kSettleFactor * level) {
         out.reconvergence = t - kSettleWindow - out.lift_off;
@@ -122,15 +126,15 @@ std::string summary_table(const std::vector<Summary>& rows) {
   for (const Summary& s : rows) {
     out += fmt::format("{:<17} {:<6} {:<8} {:>5.2f} | {} | {} | {} | {:>7} {:>7} {:>8.1f}%\n", s.scenario, s.plant,
                        s.adaptation ? "adaptive" : "fixed", s.payload, triple(s.rms_before), triple(s.rms_holding),
-                       triple(s.rms_after), seconds(s.lift_delay), seconds(s.reconvergence),
-                       100.0 * s.press_drift);
+                       triple(s.rms_after), seconds(s.lift_delay), seconds(s.reconvergence), 100.0 * s.press_drift);
   }
   return out;
 }
 
 std::string estimate_table(const std::vector<Summary>& rows) {
   std::string out = fmt::format("{:<6} {:>10}", "p^", "initial");
-  for (const Summary& s : rows) out += fmt::format(" {:>14}", fmt::format("{}/{}", s.scenario.substr(6), s.plant.substr(0, 2)));
+  for (const Summary& s : rows)
+    out += fmt::format(" {:>14}", fmt::format("{}/{}", s.scenario.substr(6), s.plant.substr(0, 2)));
   out += "\n";
   for (int b = 0; b < kParameters; ++b) {
     out += fmt::format("{:<6} {:>10.4f}", Kraft::parameter_names[b], Kraft::initial_estimate[b]);

@@ -19,8 +19,8 @@ struct Summary {
   bool adaptation = true;
   double payload = 0;
   Joints rms_before{}, rms_holding{}, rms_after{};  // rad/s
-  double first_contact = -1;  // s: the hook reaches the payload
-  double lift_off = -1;       // s: the payload clears the table (after the pick-up)
+  double first_contact = -1;                        // s: the hook reaches the payload
+  double lift_off = -1;                             // s: the payload clears the table (after the pick-up)
   double lift_delay = -1;     // s: lift_off minus the operator's lift start (the paper: "release is delayed")
   double reconvergence = -1;  // s after lift_off until the s2, s3 errors settle; -1 = they do not
   double press_drift = 0;     // |change of the first-moment estimates M*| over the press / |their true values|

@@ -55,14 +55,16 @@ TEST(SimulateCommand, WritesTheLogFiguresAndSummary) {
   ASSERT_EQ(run.exit_code, 0) << run.errors;
   const Csv log = read_csv(out / "log.csv");
   EXPECT_EQ(log.rows.size(), 3U * 81U + 1U) << "one row per 81 Hz control period";
-  for (const char* name : {"t", "master_q1", "slave_q3", "s1", "s2", "s3", "tau2", "p_MX3R", "p_FV3", "contact", "payload"}) {
+  for (const char* name :
+       {"t", "master_q1", "slave_q3", "s1", "s2", "s3", "tau2", "p_MX3R", "p_FV3", "contact", "payload"}) {
     EXPECT_GE(log.column(name), 0) << name;
   }
   const int p = log.column("p_MX3R");
   EXPECT_EQ(log.rows.front()[static_cast<std::size_t>(p)], log.rows.back()[static_cast<std::size_t>(p)])
       << "the fixed model does not adapt";
   for (const char* figure : {"angles", "errors", "estimates"}) {
-    for (const char* ext : {".png", ".svg"}) EXPECT_GT(std::filesystem::file_size(out / (std::string(figure) + ext)), 1000U);
+    for (const char* ext : {".png", ".svg"})
+      EXPECT_GT(std::filesystem::file_size(out / (std::string(figure) + ext)), 1000U);
   }
   EXPECT_NE(read_text(out / "summary.txt").find("paper-0.5kg"), std::string::npos);
 }
@@ -72,8 +74,8 @@ TEST(SimulateCommand, ReplaysARecordedMasterTrajectory) {
   std::string text = "time_s,q1,q2,q3,ignored\n";
   for (int i = 0; i <= 400; ++i) {
     const double t = 0.01 * i;
-    text += std::to_string(t) + "," + std::to_string(0.2 * std::sin(t)) + "," + std::to_string(-0.3 + 0.1 * t) +
-            "," + std::to_string(0.5) + ",7\n";
+    text += std::to_string(t) + "," + std::to_string(0.2 * std::sin(t)) + "," + std::to_string(-0.3 + 0.1 * t) + "," +
+            std::to_string(0.5) + ",7\n";
   }
   // `time_s` is not a known time column: the loader must say so; `t` works.
   const auto bad_header = write_file("bad_header.csv", text);
@@ -119,7 +121,8 @@ TEST(SimulateCommand, BadInputExitsTwoWithAMessage) {
       {"simulate --scenario paper-1kg --master-csv /nonexistent.csv", "/nonexistent.csv: cannot open"},
       {"simulate --scenario paper-1kg --master-csv " + quoted(not_number), "not_number.csv:3:7: field q2"},
       {"simulate --scenario paper-1kg --master-csv " + quoted(not_finite), "not_finite.csv:3:9: field q3"},
-      {"simulate --scenario paper-1kg --master-csv " + quoted(backwards), "backwards.csv:4:1: field t: time must increase"},
+      {"simulate --scenario paper-1kg --master-csv " + quoted(backwards),
+       "backwards.csv:4:1: field t: time must increase"},
       {"simulate --scenario paper-1kg --master-csv " + quoted(short_row), "short.csv:3:"},
       {"simulate --scenario paper-1kg --master-csv " + quoted(missing), "missing.csv:1:1: header has no column q2"},
       {"simulate --scenario paper-1kg --master-csv " + quoted(tiny), "at least three samples"},
