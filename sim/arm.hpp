@@ -5,6 +5,7 @@
 
 #include <array>
 
+#include "dyncc/runtime/small_matrix.hpp"
 #include "kraft/model.hpp"
 
 namespace dyncc::sim {
@@ -15,7 +16,7 @@ inline constexpr int kParameters = Kraft::parameters;
 using Joints = std::array<double, kDof>;
 using Vec3 = std::array<double, 3>;
 using Parameters = std::array<double, kParameters>;
-using MassMatrix = std::array<double, static_cast<std::size_t>(kDof) * kDof>;  // row-major
+using MassMatrix = runtime::Matrix<double, kDof>;  // row-major
 
 /// A point mass (a small sphere) hung on the hook.
 struct Payload {

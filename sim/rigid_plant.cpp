@@ -6,6 +6,7 @@
 #include <cmath>
 #include <string>
 
+#include "dyncc/runtime/small_matrix.hpp"
 #include "plant.hpp"
 
 namespace dyncc::sim {
@@ -15,27 +16,6 @@ namespace gen = dyncc::generated::kraft_right;
 
 constexpr double kFrictionVelocityScale = 0.01;  // rad/s over which Coulomb friction turns over
 constexpr double kSlipVelocityScale = 0.005;     // m/s, the same for the tangential contact force
-
-Joints solve_spd(MassMatrix h, Joints b) {
-  constexpr int n = kDof;
-  for (int j = 0; j < n; ++j) {
-    for (int k = 0; k < j; ++k) h[j * n + j] -= h[j * n + k] * h[j * n + k];
-    h[j * n + j] = std::sqrt(h[j * n + j]);
-    for (int i = j + 1; i < n; ++i) {
-      for (int k = 0; k < j; ++k) h[i * n + j] -= h[i * n + k] * h[j * n + k];
-      h[i * n + j] /= h[j * n + j];
-    }
-  }
-  for (int i = 0; i < n; ++i) {
-    for (int k = 0; k < i; ++k) b[i] -= h[i * n + k] * b[k];
-    b[i] /= h[i * n + i];
-  }
-  for (int i = n - 1; i >= 0; --i) {
-    for (int k = i + 1; k < n; ++k) b[i] -= h[k * n + i] * b[k];
-    b[i] /= h[i * n + i];
-  }
-  return b;
-}
 
 class RigidPlant final : public Plant {
  public:
@@ -119,7 +99,9 @@ class RigidPlant final : public Plant {
       const double friction = coulomb_[k] * std::tanh(qd[k] / kFrictionVelocityScale) + viscous_[k] * qd[k];
       rhs[k] = tau[k] - bias[k] - friction + contact.generalized[k];
     }
-    return solve_spd(h, rhs);
+    Joints qdd{};
+    runtime::solve_positive_definite<double, kDof>(h, rhs, qdd);  // H of a real arm is always definite
+    return qdd;
   }
 
   void rk4(const Joints& tau, double dt) {

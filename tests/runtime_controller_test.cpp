@@ -235,6 +235,32 @@ TEST(SlotineLiKraft, AdaptationBeatsTheFixedModelAfterAParameterChange) {
       << "MX3R " << nominal[4] << " -> " << adapted[4] << " (truth " << truth[4] << ")";
 }
 
+// The Cholesky solve the plants use: M x = b for random symmetric positive definite M = A A^T + I,
+// and a refusal (x untouched) for an indefinite M.
+TEST(SmallMatrix, SolvesPositiveDefiniteSystems) {
+  std::mt19937 random(7);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  for (int trial = 0; trial < 20; ++trial) {
+    runtime::Matrix<double, 4> a{}, m{};
+    runtime::Vector<double, 4> b{}, x{};
+    for (auto& v : a) v = u(random);
+    for (auto& v : b) v = u(random);
+    for (int i = 0; i < 4; ++i) {
+      for (int j = 0; j < 4; ++j) {
+        for (int k = 0; k < 4; ++k) m[i * 4 + j] += a[i * 4 + k] * a[j * 4 + k];
+      }
+      m[i * 4 + i] += 1.0;
+    }
+    ASSERT_TRUE((runtime::solve_positive_definite<double, 4>(m, b, x)));
+    const auto mx = runtime::multiply<double, 4>(m, x);
+    for (int i = 0; i < 4; ++i) EXPECT_NEAR(mx[i], b[i], 1e-12);
+  }
+  const runtime::Matrix<double, 2> indefinite{1.0, 2.0, 2.0, 1.0};
+  runtime::Vector<double, 2> x{5.0, 5.0};
+  EXPECT_FALSE((runtime::solve_positive_definite<double, 2>(indefinite, {1.0, 1.0}, x)));
+  EXPECT_EQ(x[0], 5.0);
+}
+
 TEST(SlotineLiSafeguards, SwitchDeadZoneBoxAndPositiveDefiniteness) {
   const std::array<double, 1> q{0.3}, qd{0.2}, zero{};
   {  // adaptation off: the estimate does not move

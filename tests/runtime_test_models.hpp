@@ -7,6 +7,8 @@
 #include <cmath>
 #include <cstddef>
 
+#include "dyncc/runtime/small_matrix.hpp"
+
 namespace dyncc::test {
 
 /// A pendulum on a horizontal axis: J qdd + m g l sin(q) + b qd = tau, linear in
@@ -30,28 +32,6 @@ struct Pendulum {
   }
 };
 
-/// Solves H x = b for a symmetric positive definite H (row-major, N x N) by Cholesky.
-template <int N>
-std::array<double, N> solve_spd(std::array<double, N * N> h, std::array<double, N> b) {
-  for (int j = 0; j < N; ++j) {
-    for (int k = 0; k < j; ++k) h[j * N + j] -= h[j * N + k] * h[j * N + k];
-    h[j * N + j] = std::sqrt(h[j * N + j]);
-    for (int i = j + 1; i < N; ++i) {
-      for (int k = 0; k < j; ++k) h[i * N + j] -= h[i * N + k] * h[j * N + k];
-      h[i * N + j] /= h[j * N + j];
-    }
-  }
-  for (int i = 0; i < N; ++i) {
-    for (int k = 0; k < i; ++k) b[i] -= h[i * N + k] * b[k];
-    b[i] /= h[i * N + i];
-  }
-  for (int i = N - 1; i >= 0; --i) {
-    for (int k = i + 1; k < N; ++k) b[i] -= h[k * N + i] * b[k];
-    b[i] /= h[i * N + i];
-  }
-  return b;
-}
-
 /// The true arm: qdd = H(q)^-1 (tau - C qd - g - friction), with the true parameters, by RK4.
 template <typename Model>
 struct Plant {
@@ -68,7 +48,9 @@ struct Plant {
     Model::template inverse_dynamics<double>(x.data(), v.data(), zero.data(), p.data(), bias.data());
     Joints rhs{};
     for (int k = 0; k < n; ++k) rhs[k] = tau[k] - bias[k];
-    return solve_spd<n>(h, rhs);
+    Joints qdd{};
+    runtime::solve_positive_definite<double, n>(h, rhs, qdd);
+    return qdd;
   }
 
   void step(const Joints& tau, double dt) {

@@ -1,5 +1,5 @@
 // Fixed-size dense helpers for the controller path: row-major n x n matrices in std::array,
-// no allocation, no exceptions. Only what the runtime needs (products, a Cholesky test).
+// no allocation, no exceptions. Only what the runtime and its plants need (products, Cholesky).
 #pragma once
 
 #include <array>
@@ -33,15 +33,15 @@ constexpr S dot(const Vector<S, N>& a, const Vector<S, N>& b) {
   return sum;
 }
 
-/// Whether a symmetric matrix is positive definite (a Cholesky factorisation succeeds with
-/// pivots above `margin`). Used to reject parameter estimates whose mass matrix is not.
+/// Cholesky factor L (lower, row-major; M = L L^T) of a symmetric matrix. False when M is not
+/// positive definite with pivots above `margin` (also for NaN); L is then incomplete.
 template <typename S, int N>
-bool is_positive_definite(const Matrix<S, N>& m, S margin = S(0)) {
-  Matrix<S, N> l{};
+bool cholesky(const Matrix<S, N>& m, Matrix<S, N>& l, S margin = S(0)) {
+  l = Matrix<S, N>{};
   for (std::size_t j = 0; j < static_cast<std::size_t>(N); ++j) {
     S diagonal = m[j * N + j];
     for (std::size_t k = 0; k < j; ++k) diagonal -= l[j * N + k] * l[j * N + k];
-    if (!(diagonal > margin)) return false;  // also false for NaN
+    if (!(diagonal > margin)) return false;
     const S pivot = std::sqrt(diagonal);
     l[j * N + j] = pivot;
     for (std::size_t i = j + 1; i < static_cast<std::size_t>(N); ++i) {
@@ -50,6 +50,33 @@ bool is_positive_definite(const Matrix<S, N>& m, S margin = S(0)) {
       l[i * N + j] = sum / pivot;
     }
   }
+  return true;
+}
+
+/// Whether a symmetric matrix is positive definite (a Cholesky factorisation succeeds with
+/// pivots above `margin`). Used to reject parameter estimates whose mass matrix is not.
+template <typename S, int N>
+bool is_positive_definite(const Matrix<S, N>& m, S margin = S(0)) {
+  Matrix<S, N> l{};
+  return cholesky<S, N>(m, l, margin);
+}
+
+/// x = M^-1 b for a symmetric positive definite M (forward dynamics: H qdd = tau - bias).
+/// False, x untouched, when M is not positive definite.
+template <typename S, int N>
+bool solve_positive_definite(const Matrix<S, N>& m, const Vector<S, N>& b, Vector<S, N>& x) {
+  Matrix<S, N> l{};
+  if (!cholesky<S, N>(m, l)) return false;
+  Vector<S, N> y = b;
+  for (std::size_t i = 0; i < static_cast<std::size_t>(N); ++i) {
+    for (std::size_t k = 0; k < i; ++k) y[i] -= l[i * N + k] * y[k];
+    y[i] /= l[i * N + i];
+  }
+  for (std::size_t i = static_cast<std::size_t>(N); i-- > 0;) {
+    for (std::size_t k = i + 1; k < static_cast<std::size_t>(N); ++k) y[i] -= l[k * N + i] * y[k];
+    y[i] /= l[i * N + i];
+  }
+  x = y;
   return true;
 }
 
