@@ -21,9 +21,9 @@
 
 // LeakSanitizer reads its built-in suppressions from this hook (sanitized builds only; elsewhere
 // nothing calls it). It lives here, with the drawing that causes the allocations, so every
-// program that plots (dyncc-sim, the tests) carries it. cairo's font cache and fontconfig's configuration are allocated on the
-// first text drawn and live until exit, and fontconfig links the parts of a pattern by offsets
-// rather than pointers, so LeakSanitizer cannot see they are still reachable.
+// program that plots (dyncc-sim, the tests) carries it. cairo's font cache and fontconfig's configuration are allocated
+// on the first text drawn and live until exit, and fontconfig links the parts of a pattern by offsets rather than
+// pointers, so LeakSanitizer cannot see they are still reachable.
 extern "C" const char* __lsan_default_suppressions();   // NOLINT(bugprone-reserved-identifier)
 extern "C" const char* __lsan_default_suppressions() {  // NOLINT(bugprone-reserved-identifier)
   return "leak:libfontconfig.so\n";
