@@ -61,6 +61,13 @@ int run_expr_expand(const ExprOptions& o);
 int run_expr_zero(const ExprOptions& o);
 int run_expr_eval(const ExprOptions& o);
 
+struct DiagnoseOptions {
+  std::string robot;
+  std::vector<std::string> logs;
+  std::string out, json, map;
+};
+int run_diagnose(const DiagnoseOptions& o);
+
 /// `simulate` and `report`: run dyncc-sim (built next to dyncc) with the same arguments.
 int run_simulator(const std::string& command, const std::vector<std::string>& arguments);
 

@@ -93,6 +93,17 @@ void add_output_commands(CLI::App& app, int& exit_code) {
   export_cmd->add_option("--format", exp->format, "mjcf or urdf")->required()->check(CLI::IsMember({"mjcf", "urdf"}));
   export_cmd->add_option("-o,--out", exp->out, "Output file (default: standard output)");
   export_cmd->callback([&exit_code, exp] { exit_code = run_export(*exp); });
+
+  auto diag = std::make_shared<DiagnoseOptions>();
+  auto* diagnose_cmd = app.add_subcommand("diagnose",
+                                          "Find where and why logs of a real arm disagree with the model, and how far "
+                                          "the gap shrinks once the cause is added");
+  diagnose_cmd->add_option("ROBOT", diag->robot, "Robot description (YAML)")->required();
+  diagnose_cmd->add_option("LOGS", diag->logs, "CSV logs: t, q1..qn, tau1..taun (optional qd*, qdd*)")->required();
+  diagnose_cmd->add_option("--out", diag->out, "Folder for diagnosis.json and summary.txt");
+  diagnose_cmd->add_option("--json", diag->json, "Write the JSON here");
+  diagnose_cmd->add_option("--map", diag->map, "Rename foreign columns: THEIR=OURS,... (e.g. time=t,pos1=q1)");
+  diagnose_cmd->callback([&exit_code, diag] { exit_code = run_diagnose(*diag); });
 }
 
 // The simulation (sim/) is its own program, dyncc-sim: it links the runtime, which the generator

@@ -1,0 +1,31 @@
+// Blocked cross-validation in time: the rows are cut into K contiguous blocks; each block is
+// predicted by a least-squares fit on the others, so every reported error is on data the fit
+// never saw (contiguous blocks, because neighbouring samples of a filtered log are not
+// independent).
+#pragma once
+
+#include <Eigen/Dense>
+#include <vector>
+
+namespace dyncc::diagnose {
+
+inline constexpr int kFolds = 5;
+
+struct CrossValidation {
+  Eigen::VectorXd heldout;             // S*n: the residual left on each row when its block was held out
+  Eigen::VectorXd theta;               // fitted on all rows
+  Eigen::VectorXd theta_error;         // standard error from the spread over the K fits (jackknife)
+  Eigen::MatrixXd theta_folds;         // k x K
+  std::vector<Eigen::Index> fold_end;  // sample index where each block ends
+};
+
+/// Fits r ~ E theta (columns scaled to unit norm, a tiny ridge for collinear columns) with
+/// rows weighted per joint (weight[j] for joint j's rows), K times on K-1 blocks.
+CrossValidation cross_validate(const Eigen::VectorXd& r, const Eigen::MatrixXd& E, Eigen::Index joints,
+                               const Eigen::VectorXd& weight);
+
+/// Per-joint RMS of stacked rows (row s*n + j), over samples [begin, end).
+Eigen::VectorXd joint_rms(const Eigen::VectorXd& stacked, Eigen::Index joints, Eigen::Index begin = 0,
+                          Eigen::Index end = -1);
+
+}  // namespace dyncc::diagnose

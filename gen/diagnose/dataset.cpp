@@ -1,0 +1,162 @@
+#include "diagnose/dataset.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace dyncc::diagnose {
+namespace {
+
+constexpr double kMaxCutoff = 4.0;         // Hz: arm motion of interest lies below
+constexpr double kRowsPerCutoff = 8.0;     // rows kept per 1/cutoff after decimation
+constexpr double kEdgeTrimPeriods = 2.0;   // filter periods dropped at each end
+constexpr double kSensitivityStep = 1e-6;  // rad (or m) for d tau / dq
+
+struct Conditioned {
+  Eigen::VectorXd t;
+  Eigen::MatrixXd q, qd, qdd, tau;
+};
+
+Conditioned condition(const JointLog& log, const Audit& audit, double cutoff, double& step) {
+  const double dt = 1.0 / audit.rate;
+  const auto n = static_cast<Eigen::Index>(std::floor((log.t[log.samples() - 1] - log.t[0]) / dt)) + 1;
+  const Eigen::VectorXd grid = Eigen::VectorXd::LinSpaced(n, log.t[0], log.t[0] + dt * static_cast<double>(n - 1));
+  const Eigen::MatrixXd q = interpolate(log.t, log.q, grid), tau = interpolate(log.t, log.tau, grid);
+  Eigen::MatrixXd qf(n, log.joints()), qd(n, log.joints()), qdd(n, log.joints()), tauf(n, log.joints());
+  const Eigen::MatrixXd measured_rate = log.qd ? interpolate(log.t, *log.qd, grid) : Eigen::MatrixXd();
+  for (Eigen::Index k = 0; k < log.joints(); ++k) {
+    qf.col(k) = zero_phase_lowpass(q.col(k), cutoff, audit.rate);
+    // A logged velocity is better than a differentiated position: filter it instead.
+    qd.col(k) = log.qd ? zero_phase_lowpass(measured_rate.col(k), cutoff, audit.rate) : derivative(qf.col(k), dt);
+    qdd.col(k) = derivative(qd.col(k), dt);
+    tauf.col(k) = zero_phase_lowpass(tau.col(k), cutoff, audit.rate);
+  }
+  const auto stride = std::max<Eigen::Index>(1, static_cast<Eigen::Index>(audit.rate / (kRowsPerCutoff * cutoff)));
+  step = dt * static_cast<double>(stride);
+  const auto trim = static_cast<Eigen::Index>(kEdgeTrimPeriods * audit.rate / cutoff);
+  std::vector<Eigen::Index> keep;
+  for (Eigen::Index i = trim; i < n - trim; i += stride) keep.push_back(i);
+  if (static_cast<Eigen::Index>(keep.size()) < kMinimumSamples) {
+    throw LogError(
+        fmt::format("{}: error: {:.1f} s at {:.0f} Hz leaves {} rows after filtering at {:.2f} Hz; the "
+                    "diagnosis needs at least {}",
+                    log.path, audit.duration, audit.rate, keep.size(), cutoff, kMinimumSamples));
+  }
+  Conditioned c;
+  const auto m = static_cast<Eigen::Index>(keep.size());
+  c.t.resize(m);
+  c.q.resize(m, log.joints());
+  c.qd.resize(m, log.joints());
+  c.qdd.resize(m, log.joints());
+  c.tau.resize(m, log.joints());
+  for (Eigen::Index r = 0; r < m; ++r) {
+    const Eigen::Index i = keep[static_cast<std::size_t>(r)];
+    c.t[r] = grid[i];
+    c.q.row(r) = qf.row(i);
+    c.qd.row(r) = qd.row(i);
+    c.qdd.row(r) = qdd.row(i);
+    c.tau.row(r) = tauf.row(i);
+  }
+  return c;
+}
+
+}  // namespace
+
+Eigen::VectorXd Dataset::residual() const {
+  Eigen::VectorXd r(samples() * n);
+  for (Eigen::Index s = 0; s < samples(); ++s) {
+    for (Eigen::Index i = 0; i < n; ++i) r[s * n + i] = tau(s, i) - model_tau(s, i);
+  }
+  return r;
+}
+
+Dataset build_dataset(const std::vector<JointLog>& logs, const pipeline::Derivation& derivation,
+                      const ConditioningOptions& options) {
+  Dataset d;
+  d.n = static_cast<Eigen::Index>(derivation.robot.coordinates.size());
+  double lowest_rate = 1e300;
+  for (const JointLog& log : logs) {
+    d.audits.push_back(audit_log(log));
+    d.logs.push_back(log.path);
+    lowest_rate = std::min(lowest_rate, d.audits.back().rate);
+  }
+  d.cutoff = options.cutoff > 0 ? options.cutoff : std::min(lowest_rate / 8.0, kMaxCutoff);
+
+  std::vector<Conditioned> parts;
+  Eigen::Index total = 0;
+  for (std::size_t l = 0; l < logs.size(); ++l) {
+    parts.push_back(condition(logs[l], d.audits[l], d.cutoff, d.step));
+    total += parts.back().t.size();
+  }
+  const Eigen::Index n = d.n;
+  d.t.resize(total);
+  d.q.resize(total, n);
+  d.qd.resize(total, n);
+  d.qdd.resize(total, n);
+  d.tau.resize(total, n);
+  d.model_tau.resize(total, n);
+  d.model_tau_rate.resize(total, n);
+  const dyn::NumericModel& model = *derivation.numeric;
+  const Eigen::VectorXd nominal = model.nominal_standard_values();
+  // The description's Coulomb friction per joint (friction at unit rate and zero reference
+  // velocity), to replace its sign by the smoothed one.
+  const Eigen::VectorXd coulomb = model
+                                      .evaluate({Eigen::VectorXd::Zero(n), Eigen::VectorXd::Ones(n),
+                                                 Eigen::VectorXd::Zero(n), Eigen::VectorXd::Zero(n)},
+                                                nominal, false)
+                                      .friction;
+  const auto p = static_cast<Eigen::Index>(model.parameter_count());
+  d.standard.resize(total * n, p);
+
+  const auto& base = derivation.base;
+  std::vector<int> rigid_columns;
+  for (std::size_t b = 0; b < base.list.size(); ++b) {
+    const auto kind = derivation.model.params.list[static_cast<std::size_t>(base.list[b].kept)].kind;
+    if (kind == dyn::StandardKind::FC || kind == dyn::StandardKind::FV) continue;  // friction is an effect of its own
+    rigid_columns.push_back(base.list[b].kept);
+    d.base_rigid_names.push_back(base.list[b].name);
+  }
+  d.base_rigid.resize(total * n, static_cast<Eigen::Index>(rigid_columns.size()));
+
+  Eigen::Index row = 0;
+  for (std::size_t l = 0; l < parts.size(); ++l) {
+    const Conditioned& c = parts[l];
+    const Eigen::Index begin = row;
+    for (Eigen::Index s = 0; s < c.t.size(); ++s, ++row) {
+      d.t[row] = c.t[s];
+      d.log_of.push_back(static_cast<int>(l));
+      d.q.row(row) = c.q.row(s);
+      d.qd.row(row) = c.qd.row(s);
+      d.qdd.row(row) = c.qdd.row(s);
+      d.tau.row(row) = c.tau.row(s);
+      dyn::State state{c.q.row(s).transpose(), c.qd.row(s).transpose(), c.qd.row(s).transpose(),
+                       c.qdd.row(s).transpose()};
+      const dyn::Evaluation e = model.evaluate(state, nominal);
+      for (Eigen::Index j = 0; j < n; ++j) {
+        const double v = c.qd(s, j), sign = v > 0 ? 1.0 : (v < 0 ? -1.0 : 0.0);
+        d.model_tau(row, j) = e.tau[j] + coulomb[j] * (std::tanh(v / kSignVelocity) - sign);
+      }
+      d.standard.middleRows(row * n, n) = e.Y;
+      for (std::size_t b = 0; b < rigid_columns.size(); ++b) {
+        d.base_rigid.block(row * n, static_cast<Eigen::Index>(b), n, 1) = e.Y.col(rigid_columns[b]);
+      }
+      Eigen::MatrixXd sensitivity(n, n);
+      for (Eigen::Index j = 0; j < n; ++j) {
+        dyn::State plus = state, minus = state;
+        plus.q[j] += kSensitivityStep;
+        minus.q[j] -= kSensitivityStep;
+        sensitivity.col(j) = (model.evaluate(plus, nominal, false).tau - model.evaluate(minus, nominal, false).tau) /
+                             (2 * kSensitivityStep);
+      }
+      d.dtau_dq.push_back(sensitivity);
+    }
+    const Eigen::Index count = row - begin;
+    for (Eigen::Index j = 0; j < n; ++j) {
+      d.model_tau_rate.block(begin, j, count, 1) = derivative(d.model_tau.block(begin, j, count, 1), d.step);
+    }
+  }
+  return d;
+}
+
+}  // namespace dyncc::diagnose

@@ -1,0 +1,72 @@
+// The diagnosis: where the nominal model disagrees with the logs, which effect of the library
+// explains it (greedy forward selection by held-out error, with confidence intervals from the
+// blocked folds), and how far the gap shrinks once it is added. Effects that explain the same
+// thing equally well are reported as "A or B"; `none` when the residual is at the noise floor;
+// `unknown` when it is above it and nothing in the library explains it.
+#pragma once
+
+#include <Eigen/Dense>
+#include <string>
+#include <vector>
+
+#include "diagnose/dataset.hpp"
+#include "diagnose/effects.hpp"
+
+namespace dyncc::diagnose {
+
+struct FittedParameter {
+  std::string name;             // "fc2", "mass", "delay", ...
+  double value = 0, error = 0;  // physical value (stiffness, gain, ... read from the column)
+};
+
+struct RankedEffect {
+  std::string effect;  // vocabulary name, or "A or B"
+  std::string family;
+  std::vector<int> joints;  // 1-based: where it shrinks the held-out gap
+  std::vector<FittedParameter> parameters;
+  Eigen::VectorXd before, after;           // held-out RMS per joint without and with it
+  double shrink = 0;                       // 1 - after/before, weighted over joints (torque-normalised)
+  double shrink_low = 0, shrink_high = 0;  // 95 % interval over the folds
+  std::size_t columns = 0;
+  std::string profile_name;
+  double profile = 0;
+  bool accepted = false;
+  bool plausible = true;  // its parameters make physical sense (no negative friction or mass)
+};
+
+struct Window {
+  int log = 0;
+  double start = 0, end = 0;  // s, the log's clock
+  double rms_ratio = 0;       // window RMS / median window RMS
+};
+
+struct Regime {
+  std::string name;       // "near_zero_velocity", "reversal", "high_acceleration", "other"
+  Eigen::VectorXd rms;    // per joint
+  Eigen::VectorXd share;  // per joint: fraction of the samples in this regime
+};
+
+struct Gap {
+  Eigen::VectorXd torque_rms, residual_rms, percent, noise_floor;  // per joint
+  std::vector<Window> windows;  // flagged time windows (residual well above its usual level)
+  std::vector<Regime> regimes;
+};
+
+struct Verdict {
+  std::string effect = "none";
+  std::vector<int> joints;  // 1-based
+  double confidence = 0;
+};
+
+struct Diagnosis {
+  Gap gap;
+  std::vector<RankedEffect> ranking;   // every candidate at the first step, best first
+  std::vector<RankedEffect> selected;  // the forward selection, in order
+  RankedEffect within_model;           // inertial_parameters alone (re-identification)
+  Verdict verdict;
+  Eigen::VectorXd final_after;  // held-out RMS per joint with every selected effect
+};
+
+Diagnosis diagnose(const Dataset& data, const pipeline::Derivation& derivation);
+
+}  // namespace dyncc::diagnose

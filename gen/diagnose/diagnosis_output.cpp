@@ -1,0 +1,128 @@
+#include "diagnose/diagnosis_output.hpp"
+
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
+namespace dyncc::diagnose {
+namespace {
+
+nlohmann::json vector_json(const Eigen::VectorXd& v) {
+  nlohmann::json out = nlohmann::json::array();
+  for (Eigen::Index i = 0; i < v.size(); ++i) out.push_back(v[i]);
+  return out;
+}
+
+nlohmann::json effect_json(const RankedEffect& r) {
+  nlohmann::json parameters = nlohmann::json::array();
+  for (const FittedParameter& p : r.parameters)
+    parameters.push_back({{"name", p.name}, {"value", p.value}, {"error", p.error}});
+  nlohmann::json out{{"effect", r.effect},
+                     {"joints", r.joints},
+                     {"parameters", parameters},
+                     {"heldout_rms_before", vector_json(r.before)},
+                     {"heldout_rms_after", vector_json(r.after)},
+                     {"shrink", r.shrink},
+                     {"shrink_interval", {r.shrink_low, r.shrink_high}},
+                     {"accepted", r.accepted},
+                     {"plausible", r.plausible}};
+  if (!r.profile_name.empty()) out[r.profile_name] = r.profile;
+  return out;
+}
+
+std::string joints_text(const std::vector<int>& joints) {
+  return joints.empty() ? std::string("-") : fmt::format("{}", fmt::join(joints, ","));
+}
+
+}  // namespace
+
+nlohmann::json diagnosis_json(const Dataset& data, const Diagnosis& d) {
+  nlohmann::json audit = nlohmann::json::array();
+  for (std::size_t l = 0; l < data.audits.size(); ++l) {
+    const Audit& a = data.audits[l];
+    nlohmann::json joints = nlohmann::json::array();
+    for (const JointAudit& j : a.joints) {
+      joints.push_back(
+          {{"quantum", j.quantum}, {"position_noise", j.position_noise}, {"torque_noise", j.torque_noise}});
+    }
+    audit.push_back({{"log", data.logs[l]},
+                     {"rate_hz", a.rate},
+                     {"jitter", a.jitter},
+                     {"largest_gap", a.largest_gap},
+                     {"samples", a.samples},
+                     {"duration_s", a.duration},
+                     {"joints", joints}});
+  }
+  nlohmann::json windows = nlohmann::json::array();
+  for (const Window& w : d.gap.windows) {
+    windows.push_back({{"log", data.logs[static_cast<std::size_t>(w.log)]},
+                       {"start", w.start},
+                       {"end", w.end},
+                       {"rms_ratio", w.rms_ratio}});
+  }
+  nlohmann::json regimes = nlohmann::json::object();
+  for (const Regime& r : d.gap.regimes)
+    regimes[r.name] = {{"rms", vector_json(r.rms)}, {"share", vector_json(r.share)}};
+  nlohmann::json ranking = nlohmann::json::array();
+  for (const RankedEffect& r : d.ranking) ranking.push_back(effect_json(r));
+  nlohmann::json selected = nlohmann::json::array();
+  for (const RankedEffect& r : d.selected) selected.push_back(effect_json(r));
+  return {{"verdict",
+           {{"effect", d.verdict.effect}, {"joints", d.verdict.joints}, {"confidence", d.verdict.confidence}}},
+          {"ranking", ranking},
+          {"selected", selected},
+          {"inertial_parameters", effect_json(d.within_model)},
+          {"gap",
+           {{"torque_rms", vector_json(d.gap.torque_rms)},
+            {"heldout_rms", vector_json(d.gap.residual_rms)},
+            {"percent_of_torque_rms", vector_json(d.gap.percent)},
+            {"noise_floor", vector_json(d.gap.noise_floor)},
+            {"heldout_rms_after_selected", vector_json(d.final_after)},
+            {"windows", windows},
+            {"regimes", regimes}}},
+          {"audit", audit},
+          {"filter", {{"cutoff_hz", data.cutoff}, {"row_spacing_s", data.step}, {"rows", data.samples()}}}};
+}
+
+std::string diagnosis_text(const Dataset& data, const Diagnosis& d) {
+  std::string out;
+  for (std::size_t l = 0; l < data.audits.size(); ++l) {
+    const Audit& a = data.audits[l];
+    out += fmt::format("log {}: {} samples, {:.1f} s at {:.1f} Hz (jitter {:.1f} %, largest gap {:.1f}x)\n",
+                       data.logs[l], a.samples, a.duration, a.rate, 100 * a.jitter, a.largest_gap);
+    for (std::size_t j = 0; j < a.joints.size(); ++j) {
+      const JointAudit& ja = a.joints[j];
+      out += fmt::format("  joint {}: quantum {}, position noise {:.2e}, torque noise {:.2e}\n", j + 1,
+                         ja.quantum > 0 ? fmt::format("{:.3e}", ja.quantum) : std::string("none"), ja.position_noise,
+                         ja.torque_noise);
+    }
+  }
+  out += fmt::format("\nheld-out gap of the nominal model (zero-phase filter {:.2f} Hz):\n", data.cutoff);
+  for (Eigen::Index j = 0; j < data.n; ++j) {
+    out += fmt::format("  joint {}: {:.4g} N m RMS = {:.1f} % of the torque RMS (noise floor {:.2g})\n", j + 1,
+                       d.gap.residual_rms[j], d.gap.percent[j], d.gap.noise_floor[j]);
+  }
+  for (const Window& w : d.gap.windows) {
+    out += fmt::format("  window {:.1f}-{:.1f} s of log {}: {:.1f}x the usual residual\n", w.start, w.end, w.log + 1,
+                       w.rms_ratio);
+  }
+  out +=
+      fmt::format("\nwithin the model (re-identified base parameters): shrink {:.1f} %\n", 100 * d.within_model.shrink);
+  out += "\ncandidates (first step, held-out):\n";
+  for (const RankedEffect& r : d.ranking) {
+    out += fmt::format("  {:<20} shrink {:6.1f} % [{:6.1f}, {:6.1f}]  joints {}{}\n", r.effect, 100 * r.shrink,
+                       100 * r.shrink_low, 100 * r.shrink_high, joints_text(r.joints),
+                       r.plausible ? "" : "  (implausible fit)");
+  }
+  out += "\nselected:\n";
+  if (d.selected.empty()) out += "  nothing\n";
+  for (const RankedEffect& r : d.selected) {
+    out += fmt::format("  {} on joints {}: shrink {:.1f} %\n", r.effect, joints_text(r.joints), 100 * r.shrink);
+    for (const FittedParameter& p : r.parameters)
+      out += fmt::format("    {} = {:.5g} +- {:.2g}\n", p.name, p.value, p.error);
+  }
+  out += fmt::format("\nverdict: {} (joints {}, confidence {:.2f})\n", d.verdict.effect, joints_text(d.verdict.joints),
+                     d.verdict.confidence);
+  return out;
+}
+
+}  // namespace dyncc::diagnose

@@ -1,0 +1,161 @@
+#include "diagnose/effects.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+
+namespace dyncc::diagnose {
+namespace {
+
+constexpr double kStribeckScales[] = {0.03, 0.06, 0.12, 0.25, 0.5};  // rad/s
+constexpr double kTorqueSignScale = 0.05;                            // N m, smoothed sign of the torque (backlash)
+
+// One column per joint, nonzero only in that joint's rows: value(s, j).
+template <typename F>
+Effect per_joint(const Dataset& d, const std::string& name, const std::string& prefix, Reading reading, F value) {
+  Effect e;
+  e.name = name;
+  e.family = name;
+  e.columns = Eigen::MatrixXd::Zero(d.samples() * d.n, d.n);
+  for (Eigen::Index j = 0; j < d.n; ++j) {
+    for (Eigen::Index s = 0; s < d.samples(); ++s) e.columns(s * d.n + j, j) = value(s, j);
+    e.parameters.push_back(fmt::format("{}{}", prefix, j + 1));
+    e.joint_of.push_back(static_cast<int>(j));
+    e.reading.push_back(reading);
+  }
+  return e;
+}
+
+// One column per joint j spread over all rows through the sensitivity: d tau_i / dq_j * w(s, j)
+// (an error in the position of joint j changes every joint's torque).
+template <typename F>
+Effect through_sensitivity(const Dataset& d, const std::string& name, const std::string& prefix, Reading reading,
+                           F weight) {
+  Effect e;
+  e.name = name;
+  e.family = name;
+  e.columns = Eigen::MatrixXd::Zero(d.samples() * d.n, d.n);
+  for (Eigen::Index j = 0; j < d.n; ++j) {
+    for (Eigen::Index s = 0; s < d.samples(); ++s) {
+      const double w = weight(s, j);
+      for (Eigen::Index i = 0; i < d.n; ++i)
+        e.columns(s * d.n + i, j) = d.dtau_dq[static_cast<std::size_t>(s)](i, j) * w;
+    }
+    e.parameters.push_back(fmt::format("{}{}", prefix, j + 1));
+    e.joint_of.push_back(static_cast<int>(j));
+    e.reading.push_back(reading);
+  }
+  return e;
+}
+
+}  // namespace
+
+int payload_link(const pipeline::Derivation& derivation) {
+  const auto& links = derivation.robot.links;
+  const Eigen::VectorXd nominal = derivation.numeric->nominal_standard_values();
+  int best = -1, best_depth = -1;
+  double best_mass = -1;
+  for (std::size_t l = 0; l < links.size(); ++l) {
+    bool leaf = true;
+    for (const auto& other : links) leaf = leaf && other.parent != static_cast<int>(l);
+    if (!leaf) continue;
+    int depth = 0;
+    for (int p = static_cast<int>(l); p >= 0; p = links[static_cast<std::size_t>(p)].parent) ++depth;
+    const int m = derivation.model.params.of_link[l][0];
+    const double mass = m >= 0 ? nominal[m] : 0.0;
+    if (depth > best_depth || (depth == best_depth && mass > best_mass)) {
+      best = static_cast<int>(l);
+      best_depth = depth;
+      best_mass = mass;
+    }
+  }
+  return best;
+}
+
+std::vector<Effect> candidate_effects(const Dataset& d, const pipeline::Derivation& derivation) {
+  std::vector<Effect> out;
+  const Eigen::Index rows = d.samples() * d.n;
+
+  out.push_back(per_joint(d, "coulomb_friction", "fc", Reading::as_is,
+                          [&](Eigen::Index s, Eigen::Index j) { return std::tanh(d.qd(s, j) / kSignVelocity); }));
+  out.push_back(per_joint(d, "viscous_friction", "fv", Reading::as_is,
+                          [&](Eigen::Index s, Eigen::Index j) { return d.qd(s, j); }));
+  // Stribeck: Coulomb plus a static excess that fades with speed; with its Coulomb column it is a
+  // superset of coulomb_friction, so it wins only when the fading is in the data.
+  for (const double vs : kStribeckScales) {
+    Effect e = per_joint(d, "stribeck_friction", "fc", Reading::as_is,
+                         [&](Eigen::Index s, Eigen::Index j) { return std::tanh(d.qd(s, j) / kSignVelocity); });
+    const Effect excess = per_joint(d, "stribeck_friction", "fs", Reading::as_is, [&](Eigen::Index s, Eigen::Index j) {
+      const double v = d.qd(s, j) / vs;
+      return std::exp(-v * v) * std::tanh(d.qd(s, j) / kSignVelocity);
+    });
+    Eigen::MatrixXd both(rows, 2 * d.n);
+    both << e.columns, excess.columns;
+    e.columns = both;
+    e.parameters.insert(e.parameters.end(), excess.parameters.begin(), excess.parameters.end());
+    e.joint_of.insert(e.joint_of.end(), excess.joint_of.begin(), excess.joint_of.end());
+    e.reading.insert(e.reading.end(), excess.reading.begin(), excess.reading.end());
+    e.profile_name = "velocity_scale";
+    e.profile = vs;
+    out.push_back(e);
+  }
+  out.push_back(
+      per_joint(d, "rotor_inertia", "ia", Reading::as_is, [&](Eigen::Index s, Eigen::Index j) { return d.qdd(s, j); }));
+  // Measured torque = nominal / gain: residual = (1/gain - 1) tau_model.
+  out.push_back(per_joint(d, "torque_gain", "gain", Reading::gain,
+                          [&](Eigen::Index s, Eigen::Index j) { return d.model_tau(s, j); }));
+  // Measured position = true + offset: residual = -(d tau/dq) offset.
+  out.push_back(through_sensitivity(d, "position_offset", "offset", Reading::as_is,
+                                    [](Eigen::Index, Eigen::Index) { return -1.0; }));
+  // Motor-side position, link lags by tau / k: residual = -(d tau/dq) tau_j / k_j.
+  out.push_back(through_sensitivity(d, "joint_elasticity", "stiffness", Reading::reciprocal,
+                                    [&](Eigen::Index s, Eigen::Index j) { return -d.tau(s, j); }));
+  // Backlash of width b: the link sits b/2 behind the motor on the side the torque pushes.
+  out.push_back(through_sensitivity(d, "backlash", "width", Reading::as_is, [&](Eigen::Index s, Eigen::Index j) {
+    return -0.5 * std::tanh(d.tau(s, j) / kTorqueSignScale);
+  }));
+  {  // Positions measured late by `delay`: the torque leads the model by delay * d tau_model/dt.
+    Effect e;
+    e.name = e.family = "sensor_delay";
+    e.columns.resize(rows, 1);
+    for (Eigen::Index s = 0; s < d.samples(); ++s) {
+      for (Eigen::Index i = 0; i < d.n; ++i) e.columns(s * d.n + i, 0) = d.model_tau_rate(s, i);
+    }
+    e.parameters = {"delay"};
+    e.joint_of = {-1};
+    e.reading = {Reading::as_is};
+    out.push_back(e);
+  }
+  {  // A payload: the standard columns of the payload link (mass, first and second moments).
+    const int link = payload_link(derivation);
+    Effect e;
+    e.name = e.family = "payload";
+    const char* names[] = {"mass", "mx", "my", "mz", "xx", "xy", "xz", "yy", "yz", "zz"};
+    std::vector<int> columns;
+    for (int k = 0; k < 10; ++k) {
+      const int index =
+          link >= 0 ? derivation.model.params.of_link[static_cast<std::size_t>(link)][static_cast<std::size_t>(k)] : -1;
+      if (index < 0) continue;
+      columns.push_back(index);
+      e.parameters.emplace_back(names[k]);
+      e.joint_of.push_back(-1);
+      e.reading.push_back(Reading::as_is);
+    }
+    e.columns.resize(rows, static_cast<Eigen::Index>(columns.size()));
+    for (std::size_t c = 0; c < columns.size(); ++c)
+      e.columns.col(static_cast<Eigen::Index>(c)) = d.standard.col(columns[c]);
+    if (!columns.empty()) out.push_back(e);
+  }
+  {  // Within the model's structure: every rigid-body base parameter re-identified.
+    Effect e;
+    e.name = e.family = "inertial_parameters";
+    e.columns = d.base_rigid;
+    e.parameters = d.base_rigid_names;
+    e.joint_of.assign(d.base_rigid_names.size(), -1);
+    e.reading.assign(d.base_rigid_names.size(), Reading::as_is);
+    out.push_back(e);
+  }
+  return out;
+}
+
+}  // namespace dyncc::diagnose

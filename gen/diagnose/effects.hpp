@@ -1,0 +1,39 @@
+// The library of candidate unmodelled effects. Each one is a set of extra regressor columns over
+// the stacked rows of a Dataset (row s*n + i: joint i at sample s), linear in its parameters
+// (linearised about the nominal model where the effect itself is not linear: a delay, an
+// offset, a compliance), so every candidate is fitted by the same least squares and compared by
+// the same held-out error. Effects with a shape parameter (the Stribeck velocity) come once per
+// value of a small grid: a one-dimensional profile with a linear fit at each point.
+#pragma once
+
+#include <Eigen/Dense>
+#include <string>
+#include <vector>
+
+#include "diagnose/dataset.hpp"
+
+namespace dyncc::diagnose {
+
+/// How a fitted column value turns into the effect's physical parameter.
+enum class Reading { as_is, reciprocal, gain };
+
+struct Effect {
+  std::string name;                     // the JSON vocabulary: coulomb_friction, payload, ...
+  Eigen::MatrixXd columns;              // S*n x k
+  std::vector<std::string> parameters;  // per column, e.g. "fc2", "mass", "delay"
+  std::vector<int> joint_of;            // per column: the joint it belongs to (0-based), -1 shared
+  std::vector<Reading> reading;         // per column
+  std::string profile_name;             // "velocity_scale" for a profile effect, else empty
+  double profile = 0;
+  std::string family;  // effects of one family are alternatives of each other
+};
+
+/// The payload link: the deepest link without children (ties: the heaviest), where a tool or a
+/// hook carries a load.
+int payload_link(const pipeline::Derivation& derivation);
+
+/// Every candidate for the data (friction, payload, delay, gain, offset, compliance, backlash,
+/// rotor inertia, and the description's own inertial parameters).
+std::vector<Effect> candidate_effects(const Dataset& data, const pipeline::Derivation& derivation);
+
+}  // namespace dyncc::diagnose

@@ -1,0 +1,91 @@
+// Blind checks of the diagnosis on synthetic logs of the Kraft arm: one effect injected at a
+// known size (about 10 % of the torque RMS), positions quantised, torques noisy; the diagnosis
+// sees only the CSV. It must name the effect and the joint, and fit its size.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "diagnose/dataset.hpp"
+#include "diagnose/diagnosis.hpp"
+#include "diagnose/diagnosis_output.hpp"
+#include "diagnose_synthetic.hpp"
+#include "dynamics_support.hpp"
+
+namespace dyncc::test {
+namespace {
+
+const pipeline::Derivation& kraft() {
+  static const std::unique_ptr<pipeline::Derivation> d =
+      derive_file(std::filesystem::path(DYNCC_SOURCE_DIR) / "robots" / "kraft.yaml");
+  return *d;
+}
+
+struct Case {
+  Injection injection;
+  std::string parameter;  // the fitted parameter to compare with the injected size ("" = none)
+  double tolerance;       // relative (or absolute seconds for the delay)
+};
+
+diagnose::Diagnosis run(const Injection& inject, const SyntheticLog& s, std::string* text = nullptr) {
+  const auto path = std::filesystem::path(::testing::TempDir()) / ("dyncc_diagnose_" + inject.effect + ".csv");
+  write_synthetic_log(kraft(), inject, s, path);
+  const auto log = diagnose::read_joint_log(path.string(), 3);
+  const diagnose::Dataset data = diagnose::build_dataset({log}, kraft());
+  diagnose::Diagnosis d = diagnose::diagnose(data, kraft());
+  if (text != nullptr) *text = diagnose::diagnosis_text(data, d);
+  return d;
+}
+
+class InjectedEffect : public ::testing::TestWithParam<Case> {};
+
+TEST_P(InjectedEffect, IsNamedLocatedAndSized) {
+  const Case& c = GetParam();
+  std::string text;
+  const diagnose::Diagnosis d = run(c.injection, SyntheticLog{}, &text);
+  SCOPED_TRACE(text);
+  EXPECT_NE(d.verdict.effect.find(c.injection.effect), std::string::npos);
+  if (c.parameter.empty()) return;
+  ASSERT_FALSE(d.selected.empty());
+  const auto& first = d.selected.front();
+  if (c.injection.effect != "payload" && c.injection.effect != "sensor_delay") {
+    EXPECT_NE(std::find(first.joints.begin(), first.joints.end(), c.injection.joint + 1), first.joints.end());
+  }
+  bool found = false;
+  for (const auto& p : first.parameters) {
+    if (p.name != c.parameter) continue;
+    found = true;
+    if (c.injection.effect == "sensor_delay") {
+      EXPECT_NEAR(p.value, c.injection.size, c.tolerance);
+    } else {
+      EXPECT_NEAR(p.value, c.injection.size, c.tolerance * std::abs(c.injection.size));
+    }
+  }
+  EXPECT_TRUE(found) << c.parameter;
+  EXPECT_GT(first.shrink, 0.5) << "the injected effect explains most of the gap";
+}
+
+Case make_case(const char* effect, int joint, double size, const char* parameter, double tolerance) {
+  Case c;
+  c.injection.effect = effect;
+  c.injection.joint = joint;
+  c.injection.size = size;
+  c.parameter = parameter;
+  c.tolerance = tolerance;
+  return c;
+}
+
+std::vector<Case> cases() {
+  return {make_case("none", 0, 0.0, "", 0),
+          make_case("coulomb_friction", 1, 0.15, "fc2", 0.1),
+          make_case("viscous_friction", 2, 0.4, "fv3", 0.1),
+          make_case("payload", 0, 0.3, "mass", 0.03),
+          make_case("torque_gain", 1, 1.15, "gain2", 0.1),
+          make_case("sensor_delay", 0, 0.03, "delay", 0.005),
+          make_case("position_offset", 1, 0.1, "offset2", 0.1)};
+}
+
+INSTANTIATE_TEST_SUITE_P(Kraft, InjectedEffect, ::testing::ValuesIn(cases()),
+                         [](const auto& info) { return info.param.injection.effect; });
+
+}  // namespace
+}  // namespace dyncc::test
