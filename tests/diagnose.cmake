@@ -1,4 +1,4 @@
 # The sim-to-real diagnosis (gen/diagnose): log reading and its errors, the audit, and blind
 # checks on synthetic logs with one known effect injected.
-dyncc_add_test(diagnose_tests diagnose_log_test.cpp diagnose_effect_test.cpp)
-target_link_libraries(diagnose_tests PRIVATE dyncc_diagnose dyncc_pipeline)
+dyncc_add_test(diagnose_tests diagnose_log_test.cpp diagnose_effect_test.cpp diagnose_cli_test.cpp)
+target_link_libraries(diagnose_tests PRIVATE dyncc_diagnose dyncc_pipeline nlohmann_json::nlohmann_json)

@@ -8,11 +8,13 @@
 #include "diagnose/dataset.hpp"
 #include "diagnose/diagnosis.hpp"
 #include "diagnose/diagnosis_output.hpp"
-#include "diagnose_synthetic.hpp"
+#include "diagnose/synthetic_log.hpp"
 #include "dynamics_support.hpp"
 
 namespace dyncc::test {
 namespace {
+
+using diagnose::Injection;
 
 const pipeline::Derivation& kraft() {
   static const std::unique_ptr<pipeline::Derivation> d =
@@ -26,9 +28,9 @@ struct Case {
   double tolerance;       // relative (or absolute seconds for the delay)
 };
 
-diagnose::Diagnosis run(const Injection& inject, const SyntheticLog& s, std::string* text = nullptr) {
+diagnose::Diagnosis run(const Injection& inject, const diagnose::SyntheticOptions& s, std::string* text = nullptr) {
   const auto path = std::filesystem::path(::testing::TempDir()) / ("dyncc_diagnose_" + inject.effect + ".csv");
-  write_synthetic_log(kraft(), inject, s, path);
+  diagnose::write_synthetic_log(kraft(), {inject}, s, path);
   const auto log = diagnose::read_joint_log(path.string(), 3);
   const diagnose::Dataset data = diagnose::build_dataset({log}, kraft());
   diagnose::Diagnosis d = diagnose::diagnose(data, kraft());
@@ -41,7 +43,7 @@ class InjectedEffect : public ::testing::TestWithParam<Case> {};
 TEST_P(InjectedEffect, IsNamedLocatedAndSized) {
   const Case& c = GetParam();
   std::string text;
-  const diagnose::Diagnosis d = run(c.injection, SyntheticLog{}, &text);
+  const diagnose::Diagnosis d = run(c.injection, diagnose::SyntheticOptions{}, &text);
   SCOPED_TRACE(text);
   EXPECT_NE(d.verdict.effect.find(c.injection.effect), std::string::npos);
   if (c.parameter.empty()) return;

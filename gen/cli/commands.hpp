@@ -68,6 +68,15 @@ struct DiagnoseOptions {
 };
 int run_diagnose(const DiagnoseOptions& o);
 
+struct BenchOptions {
+  int cases = 20;
+  unsigned seed = 1;
+  std::string out = "sim2real-bench";
+  std::string robots = "robots";
+  std::vector<std::string> arms{"kraft", "puma560", "panda"};
+};
+int run_sim2real_bench(const BenchOptions& o);
+
 /// `simulate` and `report`: run dyncc-sim (built next to dyncc) with the same arguments.
 int run_simulator(const std::string& command, const std::vector<std::string>& arguments);
 

@@ -104,6 +104,16 @@ void add_output_commands(CLI::App& app, int& exit_code) {
   diagnose_cmd->add_option("--json", diag->json, "Write the JSON here");
   diagnose_cmd->add_option("--map", diag->map, "Rename foreign columns: THEIR=OURS,... (e.g. time=t,pos1=q1)");
   diagnose_cmd->callback([&exit_code, diag] { exit_code = run_diagnose(*diag); });
+
+  auto bench = std::make_shared<BenchOptions>();
+  auto* bench_cmd = app.add_subcommand(
+      "sim2real-bench", "Check the diagnosis blind: logs with hidden effects, diagnosed as a separate process, scored");
+  bench_cmd->add_option("--cases", bench->cases, "Number of logs")->check(CLI::Range(1, 100000));
+  bench_cmd->add_option("--seed", bench->seed, "Seed of the case generator");
+  bench_cmd->add_option("--out", bench->out, "Folder for the logs, truths, diagnoses and summary.md");
+  bench_cmd->add_option("--robots", bench->robots, "Folder with the descriptions (default robots)");
+  bench_cmd->add_option("--arms", bench->arms, "Descriptions to use (default kraft puma560 panda)");
+  bench_cmd->callback([&exit_code, bench] { exit_code = run_sim2real_bench(*bench); });
 }
 
 // The simulation (sim/) is its own program, dyncc-sim: it links the runtime, which the generator

@@ -9,66 +9,74 @@ namespace dyncc::diagnose {
 namespace {
 
 constexpr double kMaxCutoff = 4.0;         // Hz: arm motion of interest lies below
-constexpr double kRowsPerCutoff = 8.0;     // rows kept per 1/cutoff after decimation
+constexpr double kEvaluationRate = 100.0;  // Hz: at most this many evaluation rows per second
+constexpr double kRowsPerCutoff = 8.0;     // analysis rows per 1/cutoff
 constexpr double kEdgeTrimPeriods = 2.0;   // filter periods dropped at each end
 constexpr double kSensitivityStep = 1e-6;  // rad (or m) for d tau / dq
 
 struct Conditioned {
   Eigen::VectorXd t;
   Eigen::MatrixXd q, qd, qdd, tau;
+  double rate = 0;
 };
 
-Conditioned condition(const JointLog& log, const Audit& audit, double cutoff, double& step) {
+// Positions filtered and differentiated at the log's own rate, the torque only anti-aliased;
+// then every stride-th row, for at most kEvaluationRate rows per second.
+Conditioned condition_log(const JointLog& log, const Audit& audit, double cutoff) {
   const double dt = 1.0 / audit.rate;
   const auto n = static_cast<Eigen::Index>(std::floor((log.t[log.samples() - 1] - log.t[0]) / dt)) + 1;
   const Eigen::VectorXd grid = Eigen::VectorXd::LinSpaced(n, log.t[0], log.t[0] + dt * static_cast<double>(n - 1));
   const Eigen::MatrixXd q = interpolate(log.t, log.q, grid), tau = interpolate(log.t, log.tau, grid);
-  Eigen::MatrixXd qf(n, log.joints()), qd(n, log.joints()), qdd(n, log.joints()), tauf(n, log.joints());
+  const auto stride = std::max<Eigen::Index>(1, static_cast<Eigen::Index>(std::floor(audit.rate / kEvaluationRate)));
+  const double rate = audit.rate / static_cast<double>(stride);
+  Eigen::MatrixXd qf(n, log.joints()), qd(n, log.joints()), qdd(n, log.joints()), taua(n, log.joints());
   const Eigen::MatrixXd measured_rate = log.qd ? interpolate(log.t, *log.qd, grid) : Eigen::MatrixXd();
   for (Eigen::Index k = 0; k < log.joints(); ++k) {
     qf.col(k) = zero_phase_lowpass(q.col(k), cutoff, audit.rate);
     // A logged velocity is better than a differentiated position: filter it instead.
     qd.col(k) = log.qd ? zero_phase_lowpass(measured_rate.col(k), cutoff, audit.rate) : derivative(qf.col(k), dt);
     qdd.col(k) = derivative(qd.col(k), dt);
-    tauf.col(k) = zero_phase_lowpass(tau.col(k), cutoff, audit.rate);
-  }
-  const auto stride = std::max<Eigen::Index>(1, static_cast<Eigen::Index>(audit.rate / (kRowsPerCutoff * cutoff)));
-  step = dt * static_cast<double>(stride);
-  const auto trim = static_cast<Eigen::Index>(kEdgeTrimPeriods * audit.rate / cutoff);
-  std::vector<Eigen::Index> keep;
-  for (Eigen::Index i = trim; i < n - trim; i += stride) keep.push_back(i);
-  if (static_cast<Eigen::Index>(keep.size()) < kMinimumSamples) {
-    throw LogError(
-        fmt::format("{}: error: {:.1f} s at {:.0f} Hz leaves {} rows after filtering at {:.2f} Hz; the "
-                    "diagnosis needs at least {}",
-                    log.path, audit.duration, audit.rate, keep.size(), cutoff, kMinimumSamples));
+    taua.col(k) = stride > 1 ? zero_phase_lowpass(tau.col(k), 0.4 * rate, audit.rate) : Eigen::VectorXd(tau.col(k));
   }
   Conditioned c;
-  const auto m = static_cast<Eigen::Index>(keep.size());
+  c.rate = rate;
+  const Eigen::Index m = (n + stride - 1) / stride;
   c.t.resize(m);
   c.q.resize(m, log.joints());
   c.qd.resize(m, log.joints());
   c.qdd.resize(m, log.joints());
   c.tau.resize(m, log.joints());
   for (Eigen::Index r = 0; r < m; ++r) {
-    const Eigen::Index i = keep[static_cast<std::size_t>(r)];
-    c.t[r] = grid[i];
-    c.q.row(r) = qf.row(i);
-    c.qd.row(r) = qd.row(i);
-    c.qdd.row(r) = qdd.row(i);
-    c.tau.row(r) = tauf.row(i);
+    c.t[r] = grid[r * stride];
+    c.q.row(r) = qf.row(r * stride);
+    c.qd.row(r) = qd.row(r * stride);
+    c.qdd.row(r) = qdd.row(r * stride);
+    c.tau.row(r) = taua.row(r * stride);
   }
   return c;
 }
 
 }  // namespace
 
-Eigen::VectorXd Dataset::residual() const {
-  Eigen::VectorXd r(samples() * n);
-  for (Eigen::Index s = 0; s < samples(); ++s) {
-    for (Eigen::Index i = 0; i < n; ++i) r[s * n + i] = tau(s, i) - model_tau(s, i);
+Eigen::MatrixXd Dataset::condition(const Eigen::MatrixXd& stacked) const {
+  Eigen::Index total = 0;
+  for (const Segment& g : segments) total += static_cast<Eigen::Index>(g.keep.size());
+  Eigen::MatrixXd out(total * n, stacked.cols());
+  Eigen::Index row = 0;
+  for (const Segment& g : segments) {
+    const Eigen::Index length = g.end - g.begin;
+    for (Eigen::Index c = 0; c < stacked.cols(); ++c) {
+      for (Eigen::Index i = 0; i < n; ++i) {
+        Eigen::VectorXd x(length);
+        for (Eigen::Index s = 0; s < length; ++s) x[s] = stacked((g.begin + s) * n + i, c);
+        const Eigen::VectorXd y = zero_phase_lowpass(x, cutoff, g.rate);
+        for (std::size_t k = 0; k < g.keep.size(); ++k)
+          out((row + static_cast<Eigen::Index>(k)) * n + i, c) = y[g.keep[k]];
+      }
+    }
+    row += static_cast<Eigen::Index>(g.keep.size());
   }
-  return r;
+  return out;
 }
 
 Dataset build_dataset(const std::vector<JointLog>& logs, const pipeline::Derivation& derivation,
@@ -86,8 +94,24 @@ Dataset build_dataset(const std::vector<JointLog>& logs, const pipeline::Derivat
   std::vector<Conditioned> parts;
   Eigen::Index total = 0;
   for (std::size_t l = 0; l < logs.size(); ++l) {
-    parts.push_back(condition(logs[l], d.audits[l], d.cutoff, d.step));
-    total += parts.back().t.size();
+    parts.push_back(condition_log(logs[l], d.audits[l], d.cutoff));
+    const Conditioned& c = parts.back();
+    Dataset::Segment g;
+    g.begin = total;
+    g.end = total + c.t.size();
+    g.rate = c.rate;
+    const auto trim = static_cast<Eigen::Index>(kEdgeTrimPeriods * c.rate / d.cutoff);
+    const auto stride = std::max<Eigen::Index>(1, static_cast<Eigen::Index>(c.rate / (kRowsPerCutoff * d.cutoff)));
+    for (Eigen::Index i = trim; i < c.t.size() - trim; i += stride) g.keep.push_back(i);
+    if (static_cast<Eigen::Index>(g.keep.size()) < kMinimumSamples) {
+      throw LogError(
+          fmt::format("{}: error: {:.1f} s at {:.0f} Hz leaves {} rows after filtering at {:.2f} Hz; the "
+                      "diagnosis needs at least {}",
+                      logs[l].path, d.audits[l].duration, d.audits[l].rate, g.keep.size(), d.cutoff, kMinimumSamples));
+    }
+    d.step = std::max(d.step, static_cast<double>(stride) / c.rate);
+    d.segments.push_back(g);
+    total += c.t.size();
   }
   const Eigen::Index n = d.n;
   d.t.resize(total);
@@ -153,8 +177,34 @@ Dataset build_dataset(const std::vector<JointLog>& logs, const pipeline::Derivat
     }
     const Eigen::Index count = row - begin;
     for (Eigen::Index j = 0; j < n; ++j) {
-      d.model_tau_rate.block(begin, j, count, 1) = derivative(d.model_tau.block(begin, j, count, 1), d.step);
+      d.model_tau_rate.block(begin, j, count, 1) = derivative(d.model_tau.block(begin, j, count, 1), 1.0 / c.rate);
     }
+  }
+
+  // The analysis rows: logged and model torque through the same filter.
+  auto stack = [&](const Eigen::MatrixXd& m) {
+    Eigen::MatrixXd out(m.rows() * n, 1);
+    for (Eigen::Index s = 0; s < m.rows(); ++s) out.block(s * n, 0, n, 1) = m.row(s).transpose();
+    return out;
+  };
+  auto unstack = [&](const Eigen::MatrixXd& v) {
+    Eigen::MatrixXd out(v.rows() / n, n);
+    for (Eigen::Index s = 0; s < out.rows(); ++s) out.row(s) = v.block(s * n, 0, n, 1).transpose();
+    return out;
+  };
+  d.analysis_tau = unstack(d.condition(stack(d.tau)));
+  d.analysis_qd = unstack(d.condition(stack(d.qd)));
+  d.analysis_qdd = unstack(d.condition(stack(d.qdd)));
+  d.residual = d.condition(stack(d.tau) - stack(d.model_tau)).col(0);
+  for (const Dataset::Segment& g : d.segments) {
+    for (const Eigen::Index k : g.keep) {
+      d.analysis_log.push_back(d.log_of[static_cast<std::size_t>(g.begin + k)]);
+    }
+  }
+  d.analysis_t.resize(static_cast<Eigen::Index>(d.analysis_log.size()));
+  Eigen::Index a = 0;
+  for (const Dataset::Segment& g : d.segments) {
+    for (const Eigen::Index k : g.keep) d.analysis_t[a++] = d.t[g.begin + k];
   }
   return d;
 }

@@ -16,29 +16,53 @@ namespace dyncc::diagnose {
 
 /// Velocity scale (rad/s) over which Coulomb friction turns over, in the nominal model and in the
 /// friction effects alike: the sign of a filtered velocity estimate near zero is noise.
-inline constexpr double kSignVelocity = 0.01;
+inline constexpr double kSignVelocity = 0.002;
 
 struct ConditioningOptions {
   double cutoff = 0;  // Hz; 0 = automatic, min(rate / 8, 4 Hz)
 };
 
+/// Two sets of rows. Evaluation rows (at most kEvaluationRate, from filtered positions): where
+/// the model, its regressors and the effect columns are evaluated. Analysis rows: what the fits
+/// use, after the SAME zero-phase low-pass has been applied to the logged torque and to every
+/// model column (parallel filtering: a torque step from Coulomb friction and its model column are
+/// smoothed alike), edges trimmed, decimated to about 8 rows per filter period.
 struct Dataset {
   Eigen::Index n = 0;  // joints
   std::vector<std::string> logs;
   std::vector<Audit> audits;
-  double cutoff = 0;                // Hz, of the zero-phase filter
-  double step = 0;                  // s between the rows kept (after decimation)
-  Eigen::VectorXd t;                // S, per log's own clock
-  std::vector<int> log_of;          // S: which log
-  Eigen::MatrixXd q, qd, qdd, tau;  // S x n, filtered
-  Eigen::MatrixXd model_tau;        // S x n, nominal model
-  Eigen::MatrixXd model_tau_rate;   // S x n, d model_tau / dt
+  double cutoff = 0;  // Hz, of the zero-phase filter
+
+  // Evaluation rows (stacked over logs; row s*n + i of a stacked matrix is joint i at row s).
+  Eigen::VectorXd t;  // per log's own clock
+  std::vector<int> log_of;
+  Eigen::MatrixXd q, qd, qdd, tau;  // tau only anti-aliased here
+  Eigen::MatrixXd model_tau;        // nominal model (Coulomb with the smoothed sign)
+  Eigen::MatrixXd model_tau_rate;   // d model_tau / dt
   Eigen::MatrixXd base_rigid;       // S*n x r': base regressor without friction columns
   std::vector<std::string> base_rigid_names;
   Eigen::MatrixXd standard;              // S*n x p: standard regressor (for the payload link's columns)
   std::vector<Eigen::MatrixXd> dtau_dq;  // S of n x n: d model_tau / dq
   [[nodiscard]] Eigen::Index samples() const { return t.size(); }
-  [[nodiscard]] Eigen::VectorXd residual() const;  // stacked tau - model_tau
+
+  // Evaluation rows -> analysis rows.
+  struct Segment {
+    Eigen::Index begin = 0, end = 0;  // evaluation rows of one log
+    double rate = 0;                  // Hz of those rows
+    std::vector<Eigen::Index> keep;   // offsets (from begin) kept as analysis rows
+  };
+  std::vector<Segment> segments;
+  /// Filters every column of a stacked (S*n x k) matrix along time, per joint and per log, and
+  /// keeps the analysis rows: (A*n x k).
+  [[nodiscard]] Eigen::MatrixXd condition(const Eigen::MatrixXd& stacked) const;
+
+  // Analysis rows.
+  double step = 0;             // s between analysis rows (of the slowest log)
+  Eigen::VectorXd analysis_t;  // A
+  std::vector<int> analysis_log;
+  Eigen::MatrixXd analysis_qd, analysis_qdd, analysis_tau;  // A x n
+  Eigen::VectorXd residual;                                 // A*n: filtered logged torque - filtered model torque
+  [[nodiscard]] Eigen::Index rows() const { return analysis_t.size(); }
 };
 
 /// Conditions the logs and evaluates the model. Throws LogError when a log is too short for the

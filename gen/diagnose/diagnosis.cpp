@@ -141,9 +141,9 @@ double normal_cdf(double x) { return 0.5 * std::erfc(-x / std::sqrt(2.0)); }
 
 Gap locate(const Dataset& d, const Eigen::VectorXd& r) {
   Gap g;
-  const Eigen::Index n = d.n, samples = d.samples();
+  const Eigen::Index n = d.n, samples = d.rows();
   g.residual_rms = joint_rms(r, n);
-  g.torque_rms = (d.tau.array().square().colwise().mean()).sqrt().transpose();
+  g.torque_rms = (d.analysis_tau.array().square().colwise().mean()).sqrt().transpose();
   g.percent = 100.0 * g.residual_rms.cwiseQuotient(g.torque_rms.cwiseMax(1e-12));
   g.noise_floor = Eigen::VectorXd::Zero(n);
   for (std::size_t l = 0; l < d.audits.size(); ++l) {
@@ -171,7 +171,8 @@ Gap locate(const Dataset& d, const Eigen::VectorXd& r) {
     for (const auto& [begin, value] : windows) {
       if (median > 0 && value > 2.0 * median) {
         const Eigen::Index last = begin + length - 1;
-        g.windows.push_back({d.log_of[static_cast<std::size_t>(begin)], d.t[begin], d.t[last], value / median});
+        g.windows.push_back(
+            {d.analysis_log[static_cast<std::size_t>(begin)], d.analysis_t[begin], d.analysis_t[last], value / median});
       }
     }
   }
@@ -183,20 +184,21 @@ Gap locate(const Dataset& d, const Eigen::VectorXd& r) {
   }
   const auto reach = std::max<Eigen::Index>(1, static_cast<Eigen::Index>(0.2 / d.step));
   for (Eigen::Index j = 0; j < n; ++j) {
-    Eigen::VectorXd acc = d.qdd.col(j).cwiseAbs();
+    Eigen::VectorXd acc = d.analysis_qdd.col(j).cwiseAbs();
     std::vector<double> sorted(acc.data(), acc.data() + acc.size());
     std::sort(sorted.begin(), sorted.end());
     const double high = sorted[static_cast<std::size_t>(0.85 * static_cast<double>(sorted.size() - 1))];
-    const double vmax = d.qd.col(j).cwiseAbs().maxCoeff();
+    const double vmax = d.analysis_qd.col(j).cwiseAbs().maxCoeff();
     std::array<double, 4> sum{}, count{};
     for (Eigen::Index s = 0; s < samples; ++s) {
       bool reversal = false;
       for (Eigen::Index o = std::max<Eigen::Index>(1, s - reach); o <= std::min(samples - 1, s + reach); ++o) {
-        reversal = reversal || (d.qd(o - 1, j) * d.qd(o, j) < 0 &&
-                                d.log_of[static_cast<std::size_t>(o)] == d.log_of[static_cast<std::size_t>(o - 1)]);
+        reversal = reversal ||
+                   (d.analysis_qd(o - 1, j) * d.analysis_qd(o, j) < 0 &&
+                    d.analysis_log[static_cast<std::size_t>(o)] == d.analysis_log[static_cast<std::size_t>(o - 1)]);
       }
       int k = 3;
-      if (std::abs(d.qd(s, j)) < 0.05 * vmax)
+      if (std::abs(d.analysis_qd(s, j)) < 0.05 * vmax)
         k = 0;
       else if (reversal)
         k = 1;
@@ -218,8 +220,8 @@ Gap locate(const Dataset& d, const Eigen::VectorXd& r) {
 
 Diagnosis diagnose(const Dataset& d, const pipeline::Derivation& derivation) {
   Diagnosis out;
-  const Eigen::Index n = d.n, samples = d.samples();
-  const Eigen::VectorXd r0 = d.residual();
+  const Eigen::Index n = d.n;
+  const Eigen::VectorXd r0 = d.residual;
   out.gap = locate(d, r0);
   const Eigen::VectorXd weight =
       out.gap.torque_rms.cwiseMax(1e-3 * out.gap.torque_rms.maxCoeff() + 1e-12).cwiseInverse();
@@ -259,7 +261,7 @@ Diagnosis diagnose(const Dataset& d, const pipeline::Derivation& derivation) {
     std::stable_partition(order.begin(), order.end(), [](const Candidate* c) { return c->plausible; });
     const Candidate* top = order.front();
     auto equal = [&](const Candidate* c) {
-      return c->explained >= top->explained - kMaterial * kMaterial &&
+      return c->explained >= top->explained - kMaterial * kMaterial ||
              c->shrink >= top->shrink - 0.5 * (top->high - top->low);
     };
     const Candidate* chosen = top;
@@ -306,7 +308,6 @@ Diagnosis diagnose(const Dataset& d, const pipeline::Derivation& derivation) {
     const double se = std::max(1e-9, (first.shrink_high - first.shrink_low) / (2 * kStudent95));
     out.verdict.confidence = normal_cdf(first.shrink / se);
   }
-  (void)samples;
   return out;
 }
 

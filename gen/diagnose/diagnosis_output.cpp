@@ -80,7 +80,7 @@ nlohmann::json diagnosis_json(const Dataset& data, const Diagnosis& d) {
             {"windows", windows},
             {"regimes", regimes}}},
           {"audit", audit},
-          {"filter", {{"cutoff_hz", data.cutoff}, {"row_spacing_s", data.step}, {"rows", data.samples()}}}};
+          {"filter", {{"cutoff_hz", data.cutoff}, {"row_spacing_s", data.step}, {"rows", data.rows()}}}};
 }
 
 std::string diagnosis_text(const Dataset& data, const Diagnosis& d) {

@@ -7,8 +7,8 @@
 namespace dyncc::diagnose {
 namespace {
 
-constexpr double kStribeckScales[] = {0.03, 0.06, 0.12, 0.25, 0.5};  // rad/s
-constexpr double kTorqueSignScale = 0.05;                            // N m, smoothed sign of the torque (backlash)
+constexpr double kStribeckScales[] = {0.02, 0.03, 0.045, 0.065, 0.1, 0.15, 0.22, 0.33, 0.5};  // rad/s, geometric
+constexpr double kTorqueSignScale = 0.05;  // N m, smoothed sign of the torque (backlash)
 
 // One column per joint, nonzero only in that joint's rows: value(s, j).
 template <typename F>
@@ -155,6 +155,8 @@ std::vector<Effect> candidate_effects(const Dataset& d, const pipeline::Derivati
     e.reading.assign(d.base_rigid_names.size(), Reading::as_is);
     out.push_back(e);
   }
+  // Into the analysis rows, through the filter the logged torque went through.
+  for (Effect& e : out) e.columns = d.condition(e.columns);
   return out;
 }
 

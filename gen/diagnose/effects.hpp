@@ -33,7 +33,8 @@ struct Effect {
 int payload_link(const pipeline::Derivation& derivation);
 
 /// Every candidate for the data (friction, payload, delay, gain, offset, compliance, backlash,
-/// rotor inertia, and the description's own inertial parameters).
+/// rotor inertia, and the description's own inertial parameters), built on the evaluation rows
+/// and conditioned into the analysis rows.
 std::vector<Effect> candidate_effects(const Dataset& data, const pipeline::Derivation& derivation);
 
 }  // namespace dyncc::diagnose

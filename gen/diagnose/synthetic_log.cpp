@@ -1,0 +1,168 @@
+#include "diagnose/synthetic_log.hpp"
+
+#include <cmath>
+#include <fstream>
+#include <numbers>
+#include <random>
+#include <stdexcept>
+
+#include "diagnose/effects.hpp"
+
+namespace dyncc::diagnose {
+namespace {
+
+constexpr double kStribeckVelocity = 0.1;  // rad/s: the injected static excess fades over this
+constexpr int kHarmonics = 4;
+constexpr double kBaseFrequency = 0.1;  // Hz
+
+// Per joint: a Fourier series with random phases and amplitudes falling with the harmonic, as in
+// identification experiments (the period 1 / kBaseFrequency).
+class Excitation {
+ public:
+  Excitation(Eigen::Index n, double amplitude, unsigned seed) : n_(n) {
+    std::mt19937 random(seed);
+    std::uniform_real_distribution<double> phase(0.0, 2 * std::numbers::pi), size(0.5, 1.0);
+    for (Eigen::Index j = 0; j < n; ++j) {
+      for (int k = 1; k <= kHarmonics; ++k) {
+        waves_.push_back({amplitude * 0.45 * size(random) / k, phase(random),
+                          2 * std::numbers::pi * kBaseFrequency * k * (1.0 + 0.07 * static_cast<double>(j))});
+      }
+    }
+  }
+  void at(double t, Eigen::VectorXd& q, Eigen::VectorXd& qd, Eigen::VectorXd& qdd) const {
+    q = qd = qdd = Eigen::VectorXd::Zero(n_);
+    for (Eigen::Index j = 0; j < n_; ++j) {
+      for (int k = 0; k < kHarmonics; ++k) {
+        const Wave& w = waves_[static_cast<std::size_t>(j * kHarmonics + k)];
+        const double s = std::sin(w.omega * t + w.phase), c = std::cos(w.omega * t + w.phase);
+        q[j] += w.amplitude * s;
+        qd[j] += w.amplitude * w.omega * c;
+        qdd[j] -= w.amplitude * w.omega * w.omega * s;
+      }
+    }
+  }
+
+ private:
+  struct Wave {
+    double amplitude, phase, omega;
+  };
+  Eigen::Index n_;
+  std::vector<Wave> waves_;
+};
+
+double sign(double v) { return v > 0 ? 1.0 : (v < 0 ? -1.0 : 0.0); }
+
+// The standard parameters with a payload: a point mass 5 cm along x of the payload link.
+Eigen::VectorXd with_payload(const pipeline::Derivation& d, Eigen::VectorXd standard, double mass) {
+  const int link = payload_link(d);
+  const double x = 0.05;
+  const std::array<double, 10> delta{mass, mass * x, 0, 0, 0, 0, 0, mass * x * x, 0, mass * x * x};
+  for (std::size_t k = 0; k < 10; ++k) {
+    const int index = d.model.params.of_link[static_cast<std::size_t>(link)][k];
+    if (index >= 0) standard[index] += delta[k];
+  }
+  return standard;
+}
+
+struct Sample {
+  Eigen::VectorXd logged_q, logged_tau, clean_tau;
+};
+
+Sample sample(const pipeline::Derivation& d, const std::vector<Injection>& effects, const Excitation& ex,
+              const Eigen::VectorXd& nominal, const Eigen::VectorXd& loaded, double t) {
+  Eigen::VectorXd q, qd, qdd;
+  ex.at(t, q, qd, qdd);
+  const dyn::NumericModel& model = *d.numeric;
+  Sample s;
+  s.clean_tau = model.evaluate({q, qd, qd, qdd}, nominal, false).tau;
+  s.logged_tau = model.evaluate({q, qd, qd, qdd}, loaded, false).tau;
+  s.logged_q = q;
+  for (const Injection& e : effects) {
+    const auto j = static_cast<Eigen::Index>(e.joint);
+    if (e.effect == "coulomb_friction") s.logged_tau[j] += e.size * sign(qd[j]);
+    if (e.effect == "viscous_friction") s.logged_tau[j] += e.size * qd[j];
+    if (e.effect == "stribeck_friction") {
+      s.logged_tau[j] += e.size * std::exp(-std::pow(qd[j] / kStribeckVelocity, 2)) * sign(qd[j]);
+    }
+    if (e.effect == "rotor_inertia") s.logged_tau[j] += e.size * qdd[j];
+    if (e.effect == "sensor_delay") {
+      Eigen::VectorXd qd2, qdd2;
+      ex.at(t - e.size, s.logged_q, qd2, qdd2);
+    }
+    if (e.effect == "position_offset") s.logged_q[j] += e.size;
+  }
+  for (const Injection& e : effects) {  // the logged command: the motor gives gain * it
+    if (e.effect == "torque_gain") s.logged_tau[e.joint] /= e.size;
+  }
+  return s;
+}
+
+}  // namespace
+
+std::vector<std::string> injectable_effects() {
+  return {"coulomb_friction", "viscous_friction", "stribeck_friction", "payload",
+          "torque_gain",      "sensor_delay",     "position_offset",   "rotor_inertia"};
+}
+
+bool acts_on_one_joint(const std::string& effect) {
+  return effect != "payload" && effect != "sensor_delay" && effect != "none";
+}
+
+EffectSize effect_size(const pipeline::Derivation& d, const std::vector<Injection>& effects,
+                       const SyntheticOptions& o) {
+  const auto n = static_cast<Eigen::Index>(d.robot.coordinates.size());
+  const Excitation ex(n, o.amplitude, o.seed);
+  const Eigen::VectorXd nominal = d.numeric->nominal_standard_values();
+  double payload = 0;
+  for (const Injection& e : effects) payload += e.effect == "payload" ? e.size : 0.0;
+  const Eigen::VectorXd loaded = with_payload(d, nominal, payload);
+  EffectSize out{Eigen::VectorXd::Zero(n), Eigen::VectorXd::Zero(n)};
+  const int samples = 2000;
+  for (int i = 0; i < samples; ++i) {
+    const double t = o.duration * i / samples;
+    const Sample s = sample(d, effects, ex, nominal, loaded, t);
+    // What the diagnosis sees: logged torque minus the model at the logged positions.
+    Eigen::VectorXd q, qd, qdd;
+    ex.at(t, q, qd, qdd);
+    Eigen::VectorXd lq = s.logged_q;
+    const Eigen::VectorXd model_at_logged = d.numeric->evaluate({lq, qd, qd, qdd}, nominal, false).tau;
+    out.clean_rms += s.clean_tau.cwiseAbs2();
+    out.effect_rms += (s.logged_tau - model_at_logged).cwiseAbs2();
+  }
+  out.clean_rms = (out.clean_rms / samples).cwiseSqrt();
+  out.effect_rms = (out.effect_rms / samples).cwiseSqrt();
+  return out;
+}
+
+void write_synthetic_log(const pipeline::Derivation& d, const std::vector<Injection>& effects,
+                         const SyntheticOptions& o, const std::filesystem::path& path) {
+  const auto n = static_cast<Eigen::Index>(d.robot.coordinates.size());
+  const Excitation ex(n, o.amplitude, o.seed);
+  const Eigen::VectorXd nominal = d.numeric->nominal_standard_values();
+  double payload = 0;
+  for (const Injection& e : effects) payload += e.effect == "payload" ? e.size : 0.0;
+  const Eigen::VectorXd loaded = with_payload(d, nominal, payload);
+  std::mt19937 random(o.seed + 7919);
+  std::normal_distribution<double> noise(0.0, o.torque_noise);
+  std::ofstream out(path);
+  if (!out) throw std::runtime_error(path.string() + ": cannot write");
+  out << "t";
+  for (Eigen::Index j = 1; j <= n; ++j) out << ",q" << j;
+  for (Eigen::Index j = 1; j <= n; ++j) out << ",tau" << j;
+  out << "\n";
+  out.precision(10);
+  const auto samples = static_cast<long>(o.duration * o.rate);
+  for (long i = 0; i < samples; ++i) {
+    const double t = static_cast<double>(i) / o.rate;
+    const Sample s = sample(d, effects, ex, nominal, loaded, t);
+    out << t;
+    for (Eigen::Index k = 0; k < n; ++k) {
+      out << ',' << (o.quantum > 0 ? o.quantum * std::round(s.logged_q[k] / o.quantum) : s.logged_q[k]);
+    }
+    for (Eigen::Index k = 0; k < n; ++k) out << ',' << s.logged_tau[k] + noise(random);
+    out << "\n";
+  }
+  if (!out) throw std::runtime_error(path.string() + ": cannot write");
+}
+
+}  // namespace dyncc::diagnose
