@@ -198,7 +198,7 @@ int run_sim2real_bench(const BenchOptions& o) {
         for (const auto& p : sel["parameters"]) {
           if (p["name"] != name) continue;
           const double fitted = p["value"];
-          const double target = main.effect == "torque_gain" ? value : value;
+          const double target = value;
           const bool ok = main.effect == "sensor_delay"  ? std::abs(fitted - target) <= 1.0 / k.rate
                           : main.effect == "payload"     ? std::abs(fitted - target) <= 0.03 * std::abs(target)
                           : main.effect == "torque_gain" ? std::abs(fitted - target) <= 0.1 * std::abs(target - 1.0)

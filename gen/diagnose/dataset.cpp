@@ -135,11 +135,11 @@ Dataset build_dataset(const std::vector<JointLog>& logs, const pipeline::Derivat
 
   const auto& base = derivation.base;
   std::vector<int> rigid_columns;
-  for (std::size_t b = 0; b < base.list.size(); ++b) {
-    const auto kind = derivation.model.params.list[static_cast<std::size_t>(base.list[b].kept)].kind;
+  for (const auto& parameter : base.list) {
+    const auto kind = derivation.model.params.list[static_cast<std::size_t>(parameter.kept)].kind;
     if (kind == dyn::StandardKind::FC || kind == dyn::StandardKind::FV) continue;  // friction is an effect of its own
-    rigid_columns.push_back(base.list[b].kept);
-    d.base_rigid_names.push_back(base.list[b].name);
+    rigid_columns.push_back(parameter.kept);
+    d.base_rigid_names.push_back(parameter.name);
   }
   d.base_rigid.resize(total * n, static_cast<Eigen::Index>(rigid_columns.size()));
 

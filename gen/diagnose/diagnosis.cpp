@@ -165,6 +165,7 @@ Gap locate(const Dataset& d, const Eigen::VectorXd& r) {
   }
   if (!windows.empty()) {
     std::vector<double> values;
+    values.reserve(windows.size());
     for (const auto& w : windows) values.push_back(w.second);
     std::nth_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(values.size() / 2), values.end());
     const double median = values[values.size() / 2];
@@ -245,6 +246,7 @@ Diagnosis diagnose(const Dataset& d, const pipeline::Derivation& derivation) {
     }
     if (best.empty()) break;
     std::vector<const Candidate*> order;
+    order.reserve(best.size());
     for (const auto& [name, c] : best) order.push_back(&c);
     std::sort(order.begin(), order.end(), [](const Candidate* a, const Candidate* b) { return a->shrink > b->shrink; });
     for (auto& [name, c] : best) measure(c, before, out.gap.torque_rms);

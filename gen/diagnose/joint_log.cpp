@@ -79,12 +79,12 @@ JointLog read_joint_log(const std::string& path, Eigen::Index joints, const Colu
   for (Eigen::Index k = 1; k <= joints; ++k) {
     q_columns.push_back(require(fmt::format("q{}", k), fmt::format("position of joint {}", k)));
     tau_columns.push_back(require(fmt::format("tau{}", k), fmt::format("torque of joint {}", k)));
-    if (index.count(fmt::format("qd{}", k)) != 0U) qd_columns.push_back(index[fmt::format("qd{}", k)]);
-    if (index.count(fmt::format("qdd{}", k)) != 0U) qdd_columns.push_back(index[fmt::format("qdd{}", k)]);
+    if (index.contains(fmt::format("qd{}", k))) qd_columns.push_back(index[fmt::format("qd{}", k)]);
+    if (index.contains(fmt::format("qdd{}", k))) qdd_columns.push_back(index[fmt::format("qdd{}", k)]);
   }
   for (const char* prefix : {"q", "tau"}) {
     const std::string extra = fmt::format("{}{}", prefix, joints + 1);
-    if (index.count(extra) != 0U) {
+    if (index.contains(extra)) {
       fail(path, 1, header[index[extra]].column,
            fmt::format("column '{}': the log has more joints than the description's {}", extra, joints));
     }

@@ -97,6 +97,21 @@ Sample sample(const pipeline::Derivation& d, const std::vector<Injection>& effec
   return s;
 }
 
+// What both the sizing and the writing start from: the trajectory and the true parameters.
+struct Scene {
+  Scene(const pipeline::Derivation& d, const std::vector<Injection>& effects, const SyntheticOptions& o)
+      : n(static_cast<Eigen::Index>(d.robot.coordinates.size())),
+        excitation(n, o.amplitude, o.seed),
+        nominal(d.numeric->nominal_standard_values()) {
+    double payload = 0;
+    for (const Injection& e : effects) payload += e.effect == "payload" ? e.size : 0.0;
+    loaded = with_payload(d, nominal, payload);
+  }
+  Eigen::Index n;
+  Excitation excitation;
+  Eigen::VectorXd nominal, loaded;
+};
+
 }  // namespace
 
 std::vector<std::string> injectable_effects() {
@@ -110,12 +125,11 @@ bool acts_on_one_joint(const std::string& effect) {
 
 EffectSize effect_size(const pipeline::Derivation& d, const std::vector<Injection>& effects,
                        const SyntheticOptions& o) {
-  const auto n = static_cast<Eigen::Index>(d.robot.coordinates.size());
-  const Excitation ex(n, o.amplitude, o.seed);
-  const Eigen::VectorXd nominal = d.numeric->nominal_standard_values();
-  double payload = 0;
-  for (const Injection& e : effects) payload += e.effect == "payload" ? e.size : 0.0;
-  const Eigen::VectorXd loaded = with_payload(d, nominal, payload);
+  const Scene scene(d, effects, o);
+  const Eigen::Index n = scene.n;
+  const Excitation& ex = scene.excitation;
+  const Eigen::VectorXd& nominal = scene.nominal;
+  const Eigen::VectorXd& loaded = scene.loaded;
   EffectSize out{Eigen::VectorXd::Zero(n), Eigen::VectorXd::Zero(n)};
   const int samples = 2000;
   for (int i = 0; i < samples; ++i) {
@@ -136,12 +150,11 @@ EffectSize effect_size(const pipeline::Derivation& d, const std::vector<Injectio
 
 void write_synthetic_log(const pipeline::Derivation& d, const std::vector<Injection>& effects,
                          const SyntheticOptions& o, const std::filesystem::path& path) {
-  const auto n = static_cast<Eigen::Index>(d.robot.coordinates.size());
-  const Excitation ex(n, o.amplitude, o.seed);
-  const Eigen::VectorXd nominal = d.numeric->nominal_standard_values();
-  double payload = 0;
-  for (const Injection& e : effects) payload += e.effect == "payload" ? e.size : 0.0;
-  const Eigen::VectorXd loaded = with_payload(d, nominal, payload);
+  const Scene scene(d, effects, o);
+  const Eigen::Index n = scene.n;
+  const Excitation& ex = scene.excitation;
+  const Eigen::VectorXd& nominal = scene.nominal;
+  const Eigen::VectorXd& loaded = scene.loaded;
   std::mt19937 random(o.seed + 7919);
   std::normal_distribution<double> noise(0.0, o.torque_noise);
   std::ofstream out(path);
