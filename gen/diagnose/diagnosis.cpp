@@ -94,7 +94,35 @@ double physical(Reading reading, double theta) {
   return theta;
 }
 
-RankedEffect describe(const Candidate& c, const Eigen::VectorXd& before, Eigen::Index offset) {
+// For an effect with one column set per joint (friction, gain, offset, ...), the joints whose
+// own columns carry a material, significant part of the fit: where the effect IS, rather than
+// where its fit happens to lower the residual (an offset of joint 2 changes joint 3's torque too).
+std::vector<int> own_joints(const Candidate& c, Eigen::Index offset, const Eigen::VectorXd& torque_rms) {
+  const Effect& e = *c.effect;
+  const Eigen::Index n = torque_rms.size(), rows = e.columns.rows() / n;
+  std::vector<int> joints;
+  for (Eigen::Index j = 0; j < n; ++j) {
+    Eigen::VectorXd part = Eigen::VectorXd::Zero(e.columns.rows());
+    bool significant = false;
+    for (Eigen::Index k = 0; k < e.columns.cols(); ++k) {
+      if (e.joint_of[static_cast<std::size_t>(k)] != j) continue;
+      const double theta = c.cv.theta[offset + k];
+      part += e.columns.col(k) * theta;
+      significant = significant || std::abs(theta) > 2.0 * c.cv.theta_error[offset + k];
+    }
+    double largest = 0;
+    for (Eigen::Index i = 0; i < n; ++i) {
+      double sum = 0;
+      for (Eigen::Index s = 0; s < rows; ++s) sum += part[s * n + i] * part[s * n + i];
+      largest = std::max(largest, std::sqrt(sum / static_cast<double>(rows)) / std::max(torque_rms[i], 1e-12));
+    }
+    if (significant && largest >= kMaterial) joints.push_back(static_cast<int>(j) + 1);
+  }
+  return joints;
+}
+
+RankedEffect describe(const Candidate& c, const Eigen::VectorXd& before, Eigen::Index offset,
+                      const Eigen::VectorXd& torque_rms) {
   RankedEffect r;
   const Effect& e = *c.effect;
   r.effect = e.name;
@@ -107,8 +135,13 @@ RankedEffect describe(const Candidate& c, const Eigen::VectorXd& before, Eigen::
   r.columns = static_cast<std::size_t>(e.columns.cols());
   r.profile_name = e.profile_name;
   r.profile = e.profile;
-  for (Eigen::Index j = 0; j < before.size(); ++j) {
-    if (before[j] > 0 && 1.0 - c.after[j] / before[j] >= kJointShrink) r.joints.push_back(static_cast<int>(j) + 1);
+  const bool per_joint = std::all_of(e.joint_of.begin(), e.joint_of.end(), [](int j) { return j >= 0; });
+  if (per_joint) {
+    r.joints = own_joints(c, offset, torque_rms);
+  } else {
+    for (Eigen::Index j = 0; j < before.size(); ++j) {
+      if (before[j] > 0 && 1.0 - c.after[j] / before[j] >= kJointShrink) r.joints.push_back(static_cast<int>(j) + 1);
+    }
   }
   for (Eigen::Index k = 0; k < e.columns.cols(); ++k) {
     const int joint = e.joint_of[static_cast<std::size_t>(k)];
@@ -238,7 +271,7 @@ Diagnosis diagnose(const Dataset& d, const pipeline::Derivation& derivation) {
     for (const Effect& e : effects) {
       if (std::find(taken.begin(), taken.end(), e.family) != taken.end()) continue;
       Candidate c = evaluate(e, accepted, r0, baseline, weight, n);
-      c.plausible = plausible(describe(c, before, accepted.cols()));
+      c.plausible = plausible(describe(c, before, accepted.cols(), out.gap.torque_rms));
       auto it = best.find(e.name);
       const bool better = it == best.end() || (c.plausible && !it->second.plausible) ||
                           (c.plausible == it->second.plausible && c.shrink > it->second.shrink);
@@ -252,10 +285,10 @@ Diagnosis diagnose(const Dataset& d, const pipeline::Derivation& derivation) {
     for (auto& [name, c] : best) measure(c, before, out.gap.torque_rms);
     if (step == 0) {
       for (const Candidate* c : order) {
-        out.ranking.push_back(describe(*c, before, accepted.cols()));
+        out.ranking.push_back(describe(*c, before, accepted.cols(), out.gap.torque_rms));
         out.ranking.back().plausible = c->plausible;
       }
-      out.within_model = describe(best.at("inertial_parameters"), before, 0);
+      out.within_model = describe(best.at("inertial_parameters"), before, 0, out.gap.torque_rms);
     }
     // Parsimony among equal explanations: two candidates are equal when what one explains beyond
     // the other is immaterial (below kMaterial of the torque RMS); of equals, the fewest columns
@@ -273,7 +306,8 @@ Diagnosis diagnose(const Dataset& d, const pipeline::Derivation& derivation) {
     if (!(chosen->plausible && chosen->shrink >= kAcceptShrink && chosen->low > 0.0 && chosen->material >= kMaterial)) {
       break;
     }
-    RankedEffect r = describe(*chosen, before, accepted.cols());
+    RankedEffect r = describe(*chosen, before, accepted.cols(), out.gap.torque_rms);
+    if (r.joints.empty()) break;  // explains nothing material on any joint of its own
     r.accepted = true;
     for (const Candidate* c : order) {
       if (c == chosen || !c->plausible || !equal(c)) continue;

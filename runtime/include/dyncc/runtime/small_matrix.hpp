@@ -72,7 +72,7 @@ bool solve_positive_definite(const Matrix<S, N>& m, const Vector<S, N>& b, Vecto
     for (std::size_t k = 0; k < i; ++k) y[i] -= l[i * N + k] * y[k];
     y[i] /= l[i * N + i];
   }
-  for (std::size_t i = static_cast<std::size_t>(N); i-- > 0;) {
+  for (auto i = static_cast<std::size_t>(N); i-- > 0;) {
     for (std::size_t k = i + 1; k < static_cast<std::size_t>(N); ++k) y[i] -= l[k * N + i] * y[k];
     y[i] /= l[i * N + i];
   }
