@@ -50,6 +50,13 @@ inline std::filesystem::path output_path(const std::string& name) {
   return dir / (std::string(info->test_suite_name()) + "." + info->name() + "." + name);
 }
 
+/// Writes `text` to a fresh output path of this test and returns the path.
+inline std::filesystem::path write_text(const std::string& name, const std::string& text) {
+  const auto path = output_path(name);
+  std::ofstream(path) << text;
+  return path;
+}
+
 inline std::string read_text(const std::filesystem::path& p) {
   std::ifstream in(p);
   std::ostringstream s;

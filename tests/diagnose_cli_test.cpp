@@ -12,15 +12,9 @@ namespace {
 
 const std::filesystem::path kKraft = std::filesystem::path(DYNCC_SOURCE_DIR) / "robots" / "kraft.yaml";
 
-std::filesystem::path write(const std::string& name, const std::string& text) {
-  const auto path = output_path(name);
-  std::ofstream(path) << text;
-  return path;
-}
-
 TEST(DiagnoseCommand, BadInputExitsTwoAndNamesThePlace) {
-  const auto missing = write("missing.csv", "t,q1,q2,q3,tau1,tau2\n0,0,0,0,0,0\n");
-  const auto two_joints = write("two.csv", "t,q1,q2,tau1,tau2\n0,0,0,0,0\n");
+  const auto missing = write_text("missing.csv", "t,q1,q2,q3,tau1,tau2\n0,0,0,0,0,0\n");
+  const auto two_joints = write_text("two.csv", "t,q1,q2,tau1,tau2\n0,0,0,0,0\n");
   struct Case {
     std::string arguments, expected;
   };

@@ -23,14 +23,8 @@ std::string rows(int count, double dt = 0.01, double quantum = 0.0) {
   return s;
 }
 
-std::filesystem::path write(const std::string& name, const std::string& text) {
-  const auto path = output_path(name);
-  std::ofstream(path) << text;
-  return path;
-}
-
 TEST(DiagnoseLog, ReadsAndMapsColumns) {
-  const auto path = write(
+  const auto path = write_text(
       "ok.csv", "time,pos1,pos2,tau1,tau2,comment\n" + [] {
         std::string s;
         for (int i = 0; i < 60; ++i) s += std::to_string(0.01 * i) + ",0.1,0.2,1,2,hello\n";
@@ -67,7 +61,7 @@ TEST(DiagnoseLog, RefusesMalformedLogsWithAPlace) {
       {"partial_rates.csv", "t,q1,q2,tau1,tau2,qd1\n" + rows(60), "partial_rates.csv:1:1: error: optional qd columns"},
   };
   for (const Case& c : cases) {
-    const auto path = write(c.name, c.text);
+    const auto path = write_text(c.name, c.text);
     try {
       diagnose::read_joint_log(path.string(), c.joints);
       ADD_FAILURE() << c.name << " was accepted";
@@ -81,7 +75,7 @@ TEST(DiagnoseLog, RefusesMalformedLogsWithAPlace) {
 }
 
 TEST(DiagnoseAudit, ReadsRateJitterAndQuantum) {
-  const auto path = write("audit.csv", "t,q1,q2,tau1,tau2\n" + rows(400, 1.0 / 81, 1.5e-3));
+  const auto path = write_text("audit.csv", "t,q1,q2,tau1,tau2\n" + rows(400, 1.0 / 81, 1.5e-3));
   const auto log = diagnose::read_joint_log(path.string(), 2);
   const diagnose::Audit a = diagnose::audit_log(log);
   EXPECT_NEAR(a.rate, 81.0, 0.5);  // std::to_string keeps 6 decimals of the time stamps

@@ -43,12 +43,6 @@ Csv read_csv(const std::filesystem::path& path) {
   return csv;
 }
 
-std::filesystem::path write_file(const std::string& name, const std::string& text) {
-  const auto path = output_path(name);
-  std::ofstream(path) << text;
-  return path;
-}
-
 TEST(SimulateCommand, WritesTheLogFiguresAndSummary) {
   const auto out = output_path("run");
   const DynccRun run = run_dyncc("simulate --scenario paper-0.5kg --adaptation off --duration 3 --out " + quoted(out));
@@ -78,12 +72,12 @@ TEST(SimulateCommand, ReplaysARecordedMasterTrajectory) {
             std::to_string(0.5) + ",7\n";
   }
   // `time_s` is not a known time column: the loader must say so; `t` works.
-  const auto bad_header = write_file("bad_header.csv", text);
+  const auto bad_header = write_text("bad_header.csv", text);
   DynccRun run = run_dyncc("simulate --scenario paper-unloaded --master-csv " + quoted(bad_header));
   EXPECT_EQ(run.exit_code, 2);
   EXPECT_NE(run.errors.find("no column t"), std::string::npos) << run.errors;
   text.replace(0, 6, "t");
-  const auto recording = write_file("master.csv", text);
+  const auto recording = write_text("master.csv", text);
   const auto out = output_path("replay");
   run = run_dyncc("simulate --scenario paper-unloaded --master-csv " + quoted(recording) + " --out " + quoted(out));
   ASSERT_EQ(run.exit_code, 0) << run.errors;
@@ -106,12 +100,12 @@ TEST(SimulateCommand, BadInputExitsTwoWithAMessage) {
     std::string arguments, expected;
   };
   const std::string header = "t,q1,q2,q3\n";
-  const auto not_number = write_file("not_number.csv", header + "0,0,0,0\n0.1,0,abc,0\n0.2,0,0,0\n");
-  const auto not_finite = write_file("not_finite.csv", header + "0,0,0,0\n0.1,0,0,nan\n0.2,0,0,0\n");
-  const auto backwards = write_file("backwards.csv", header + "0,0,0,0\n0.2,0,0,0\n0.1,0,0,0\n");
-  const auto short_row = write_file("short.csv", header + "0,0,0,0\n0.1,0\n0.2,0,0,0\n");
-  const auto missing = write_file("missing.csv", "t,q1,q3\n0,0,0\n");
-  const auto tiny = write_file("tiny.csv", header + "0,0,0,0\n");
+  const auto not_number = write_text("not_number.csv", header + "0,0,0,0\n0.1,0,abc,0\n0.2,0,0,0\n");
+  const auto not_finite = write_text("not_finite.csv", header + "0,0,0,0\n0.1,0,0,nan\n0.2,0,0,0\n");
+  const auto backwards = write_text("backwards.csv", header + "0,0,0,0\n0.2,0,0,0\n0.1,0,0,0\n");
+  const auto short_row = write_text("short.csv", header + "0,0,0,0\n0.1,0\n0.2,0,0,0\n");
+  const auto missing = write_text("missing.csv", "t,q1,q3\n0,0,0\n");
+  const auto tiny = write_text("tiny.csv", header + "0,0,0,0\n");
   const Case cases[] = {
       {"simulate --scenario nope", "scenario"},
       {"simulate --adaptation on", "--scenario is required"},
