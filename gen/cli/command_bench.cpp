@@ -43,6 +43,7 @@ std::pair<std::string, double> measured_parameter(const diagnose::Injection& e) 
   if (e.effect == "torque_gain") return {fmt::format("gain{}", j), e.size};
   if (e.effect == "position_offset") return {fmt::format("offset{}", j), e.size};
   if (e.effect == "payload") return {"mass", e.size};
+  if (e.effect == "contact") return {"", e.size};  // the fit's constant force + spring is not the injected peak
   return {"delay", e.size};
 }
 
@@ -53,6 +54,7 @@ double unit_size(const std::string& effect) {
   if (effect == "position_offset") return 0.02;
   if (effect == "payload") return 0.2;
   if (effect == "rotor_inertia") return 0.01;
+  if (effect == "contact") return 1.0;  // N
   return 0.1;
 }
 
@@ -64,6 +66,7 @@ bool plausible_size(const diagnose::Injection& e) {
   if (e.effect == "position_offset") return e.size <= 0.2;
   if (e.effect == "payload") return e.size <= 5.0;
   if (e.effect == "rotor_inertia") return e.size <= 3.0;
+  if (e.effect == "contact") return e.size <= 500.0;
   return true;
 }
 
@@ -196,7 +199,7 @@ int run_sim2real_bench(const BenchOptions& o) {
         const auto& sel = result["selected"][0];
         const auto [name, value] = measured_parameter(main);
         for (const auto& p : sel["parameters"]) {
-          if (p["name"] != name) continue;
+          if (name.empty() || p["name"] != name) continue;
           const double fitted = p["value"];
           const double target = value;
           const bool ok = main.effect == "sensor_delay"  ? std::abs(fitted - target) <= 1.0 / k.rate

@@ -121,6 +121,26 @@ std::vector<int> own_joints(const Candidate& c, Eigen::Index offset, const Eigen
   return joints;
 }
 
+// A contact's point of action in the link frame, from its force and moments (c = M / F), and the
+// surface height of its profile point.
+void add_contact_point(RankedEffect& r) {
+  auto find = [&](const std::string& name) {
+    for (const FittedParameter& p : r.parameters) {
+      if (p.name == name) return p;
+    }
+    return FittedParameter{};
+  };
+  const FittedParameter force = find("force");
+  if (force.value == 0) return;
+  for (const char axis : {'x', 'y', 'z'}) {
+    const FittedParameter moment = find(std::string("moment_") + axis);
+    const double value = moment.value / force.value;
+    const double error = std::hypot(moment.error, value * force.error) / std::abs(force.value);
+    r.parameters.push_back({std::string("point_") + axis, value, error});
+  }
+  r.parameters.push_back({"surface_height", r.profile, 0.0});
+}
+
 RankedEffect describe(const Candidate& c, const Eigen::VectorXd& before, Eigen::Index offset,
                       const Eigen::VectorXd& torque_rms) {
   RankedEffect r;
@@ -154,17 +174,19 @@ RankedEffect describe(const Candidate& c, const Eigen::VectorXd& before, Eigen::
         (1e-6 * (1 + std::abs(theta)));
     r.parameters.push_back({e.parameters[static_cast<std::size_t>(k)], value, derivative * error});
   }
+  if (e.family == "contact") add_contact_point(r);
   return r;
 }
 
-// Physical sense of a fit: friction coefficients, a static friction excess and a payload's mass
-// are not negative (beyond twice their error). A fit that needs them negative is the effect's
-// columns soaking up something else (e.g. a Stribeck "excess" below Coulomb sharpening a
-// mis-estimated sign near zero velocity).
+// Physical sense of a fit: friction coefficients, a static friction excess, a payload's mass and
+// a contact's force and stiffness (a surface only pushes) are not negative (beyond twice their
+// error). A fit that needs them negative is the effect's columns soaking up something else (e.g.
+// a Stribeck "excess" below Coulomb sharpening a mis-estimated sign near zero velocity).
 bool plausible(const RankedEffect& r) {
   for (const FittedParameter& p : r.parameters) {
     const bool non_negative = p.name.rfind("fc", 0) == 0 || p.name.rfind("fv", 0) == 0 || p.name.rfind("fs", 0) == 0 ||
-                              p.name == "mass" || p.name.rfind("ia", 0) == 0;
+                              p.name == "mass" || p.name.rfind("ia", 0) == 0 || p.name == "force" ||
+                              p.name == "stiffness";
     if (non_negative && p.value < -2.0 * p.error) return false;
   }
   return true;

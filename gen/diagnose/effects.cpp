@@ -2,7 +2,10 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
+
+#include "diagnose/contact.hpp"
 
 namespace dyncc::diagnose {
 namespace {
@@ -46,6 +49,59 @@ Effect through_sensitivity(const Dataset& d, const std::string& name, const std:
     e.reading.push_back(reading);
   }
   return e;
+}
+
+// Contact with a horizontal surface (perpendicular to gravity) at a point c of the payload link
+// frame, pushing up while the point is below the surface height h: a force f0 + k (h - z_c)
+// along -gravity. Its torque is J_c^T F, and J_c^T (-g^) is the gradient of the point's height,
+// i.e. the gravity part of the link's mass and first-moment regressor columns over |g|; so the
+// force and its moments F c are linear columns (the fit re-estimates the point), and only the gate
+// (z_c < h) and the spring's lever need the point and the height, which come from a small grid:
+// a two-dimensional profile (point along the link's x and z axes, height at quantiles of z_c).
+constexpr double kContactPoints[] = {-1.0, -0.5, 0.0, 0.5, 1.0, 1.5};  // times the arm's scale
+constexpr double kContactQuantiles[] = {0.02, 0.05, 0.1, 0.2, 0.3};    // of the point's height
+
+void add_contact_effects(const Dataset& d, const pipeline::Derivation& derivation, std::vector<Effect>& out) {
+  const ContactGeometry geometry(derivation);
+  if (!geometry.valid()) return;
+  const Eigen::Index n = d.n, samples = d.samples();
+  Eigen::MatrixXd height(samples, 4), lever(samples * n, 4);
+  for (Eigen::Index s = 0; s < samples; ++s) {
+    const ContactGeometry::Basis b = geometry.at(d.q.row(s).transpose());
+    height.row(s) = b.height.transpose();
+    lever.middleRows(s * n, n) = b.lever;
+  }
+  const double scale = ContactGeometry::scale(height.col(0));
+  const char* names[] = {"force", "moment_x", "moment_y", "moment_z", "stiffness"};
+  for (const double cx : kContactPoints) {
+    for (const double cz : kContactPoints) {
+      const Eigen::Vector3d c(cx * scale, 0.0, cz * scale);
+      const Eigen::VectorXd z = height.col(0) + height.rightCols(3) * c;
+      std::vector<double> sorted(z.data(), z.data() + z.size());
+      std::sort(sorted.begin(), sorted.end());
+      for (const double quantile : kContactQuantiles) {
+        const double h = sorted[static_cast<std::size_t>(quantile * static_cast<double>(sorted.size() - 1))];
+        Effect e;
+        e.name = e.family = "contact";
+        e.columns = Eigen::MatrixXd::Zero(samples * n, 5);
+        for (Eigen::Index s = 0; s < samples; ++s) {
+          if (z[s] >= h) continue;
+          const auto rows = lever.middleRows(s * n, n);
+          e.columns.block(s * n, 0, n, 4) = rows;
+          e.columns.block(s * n, 4, n, 1) = (rows.col(0) + rows.rightCols(3) * c) * (h - z[s]);
+        }
+        for (int k = 0; k < 5; ++k) {
+          e.parameters.emplace_back(names[k]);
+          e.joint_of.push_back(-1);
+          e.reading.push_back(Reading::as_is);
+        }
+        e.profile_name = "surface_height";
+        e.profile = h;
+        e.columns = d.condition(e.columns);
+        out.push_back(std::move(e));
+      }
+    }
+  }
 }
 
 }  // namespace
@@ -157,6 +213,7 @@ std::vector<Effect> candidate_effects(const Dataset& d, const pipeline::Derivati
   }
   // Into the analysis rows, through the filter the logged torque went through.
   for (Effect& e : out) e.columns = d.condition(e.columns);
+  add_contact_effects(d, derivation, out);  // conditioned as they are made (many profile points)
   return out;
 }
 

@@ -1,11 +1,13 @@
 #include "diagnose/synthetic_log.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <numbers>
 #include <random>
 #include <stdexcept>
 
+#include "diagnose/contact.hpp"
 #include "diagnose/effects.hpp"
 
 namespace dyncc::diagnose {
@@ -64,12 +66,20 @@ Eigen::VectorXd with_payload(const pipeline::Derivation& d, Eigen::VectorXd stan
   return standard;
 }
 
+// A surface the arm's payload link touches: a point of that link (off the diagnosis' grid of
+// candidate points) pushed up by a spring while it is below the surface, with the peak force as
+// the effect's size. The height is the 25 % quantile of the point's height over the motion.
+struct Surface {
+  Eigen::Vector3d point = Eigen::Vector3d::Zero();
+  double height = 0, depth = 1;  // m: surface, and the deepest the point goes below it
+};
+
 struct Sample {
   Eigen::VectorXd logged_q, logged_tau, clean_tau;
 };
 
 Sample sample(const pipeline::Derivation& d, const std::vector<Injection>& effects, const Excitation& ex,
-              const Eigen::VectorXd& nominal, const Eigen::VectorXd& loaded, double t) {
+              const Eigen::VectorXd& nominal, const Eigen::VectorXd& loaded, const Surface& surface, double t) {
   Eigen::VectorXd q, qd, qdd;
   ex.at(t, q, qd, qdd);
   const dyn::NumericModel& model = *d.numeric;
@@ -90,6 +100,11 @@ Sample sample(const pipeline::Derivation& d, const std::vector<Injection>& effec
       ex.at(t - e.size, s.logged_q, qd2, qdd2);
     }
     if (e.effect == "position_offset") s.logged_q[j] += e.size;
+    if (e.effect == "contact") {
+      const ContactGeometry::Basis b = ContactGeometry(d).at(q);
+      const double below = surface.height - ContactGeometry::height(b, surface.point);
+      if (below > 0) s.logged_tau += e.size * below / surface.depth * ContactGeometry::lever(b, surface.point);
+    }
   }
   for (const Injection& e : effects) {  // the logged command: the motor gives gain * it
     if (e.effect == "torque_gain") s.logged_tau[e.joint] /= e.size;
@@ -106,21 +121,46 @@ struct Scene {
     double payload = 0;
     for (const Injection& e : effects) payload += e.effect == "payload" ? e.size : 0.0;
     loaded = with_payload(d, nominal, payload);
+    const bool touches =
+        std::any_of(effects.begin(), effects.end(), [](const Injection& e) { return e.effect == "contact"; });
+    const ContactGeometry geometry(d);
+    if (touches && geometry.valid()) surface = place_surface(geometry, o);
+  }
+  Surface place_surface(const ContactGeometry& geometry, const SyntheticOptions& o) const {
+    const int samples = 2000;
+    std::vector<ContactGeometry::Basis> bases;
+    Eigen::VectorXd origin(samples);
+    for (int i = 0; i < samples; ++i) {
+      Eigen::VectorXd q, qd, qdd;
+      excitation.at(o.duration * i / samples, q, qd, qdd);
+      bases.push_back(geometry.at(q));
+      origin[i] = bases.back().height[0];
+    }
+    const double scale = ContactGeometry::scale(origin);
+    Surface s;
+    s.point = Eigen::Vector3d(0.8 * scale, 0.0, 0.2 * scale);
+    std::vector<double> heights;
+    for (const auto& b : bases) heights.push_back(ContactGeometry::height(b, s.point));
+    std::sort(heights.begin(), heights.end());
+    s.height = heights[heights.size() / 4];
+    s.depth = std::max(1e-6, s.height - heights.front());
+    return s;
   }
   Eigen::Index n;
   Excitation excitation;
   Eigen::VectorXd nominal, loaded;
+  Surface surface;
 };
 
 }  // namespace
 
 std::vector<std::string> injectable_effects() {
-  return {"coulomb_friction", "viscous_friction", "stribeck_friction", "payload",
-          "torque_gain",      "sensor_delay",     "position_offset",   "rotor_inertia"};
+  return {"coulomb_friction", "viscous_friction", "stribeck_friction", "payload", "torque_gain",
+          "sensor_delay",     "position_offset",  "rotor_inertia",     "contact"};
 }
 
 bool acts_on_one_joint(const std::string& effect) {
-  return effect != "payload" && effect != "sensor_delay" && effect != "none";
+  return effect != "payload" && effect != "sensor_delay" && effect != "contact" && effect != "none";
 }
 
 EffectSize effect_size(const pipeline::Derivation& d, const std::vector<Injection>& effects,
@@ -134,7 +174,7 @@ EffectSize effect_size(const pipeline::Derivation& d, const std::vector<Injectio
   const int samples = 2000;
   for (int i = 0; i < samples; ++i) {
     const double t = o.duration * i / samples;
-    const Sample s = sample(d, effects, ex, nominal, loaded, t);
+    const Sample s = sample(d, effects, ex, nominal, loaded, scene.surface, t);
     // What the diagnosis sees: logged torque minus the model at the logged positions.
     Eigen::VectorXd q, qd, qdd;
     ex.at(t, q, qd, qdd);
@@ -167,7 +207,7 @@ void write_synthetic_log(const pipeline::Derivation& d, const std::vector<Inject
   const auto samples = static_cast<long>(o.duration * o.rate);
   for (long i = 0; i < samples; ++i) {
     const double t = static_cast<double>(i) / o.rate;
-    const Sample s = sample(d, effects, ex, nominal, loaded, t);
+    const Sample s = sample(d, effects, ex, nominal, loaded, scene.surface, t);
     out << t;
     for (Eigen::Index k = 0; k < n; ++k) {
       out << ',' << (o.quantum > 0 ? o.quantum * std::round(s.logged_q[k] / o.quantum) : s.logged_q[k]);

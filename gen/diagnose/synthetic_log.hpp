@@ -15,9 +15,10 @@ namespace dyncc::diagnose {
 
 struct Injection {
   std::string effect = "none";  // coulomb_friction, viscous_friction, stribeck_friction, payload, torque_gain,
-                                // sensor_delay, position_offset, rotor_inertia
+                                // sensor_delay, position_offset, rotor_inertia, contact
   int joint = 0;                // 0-based, for per-joint effects
-  double size = 0;  // fc / excess (N m), fv (N m s), mass (kg), gain, delay (s), offset (rad), inertia (kg m^2)
+  double size = 0;  // fc / excess (N m), fv (N m s), mass (kg), gain, delay (s), offset (rad), inertia (kg m^2),
+                    // peak contact force (N)
 };
 
 struct SyntheticOptions {
@@ -32,7 +33,8 @@ struct SyntheticOptions {
 /// The effects the generator can inject.
 std::vector<std::string> injectable_effects();
 
-/// Whether an effect acts on one joint (friction, gain, offset, rotor) or on the arm (payload, delay).
+/// Whether an effect acts on one joint (friction, gain, offset, rotor) or on the arm (payload, delay,
+/// contact).
 bool acts_on_one_joint(const std::string& effect);
 
 /// Per-joint RMS of the torque the effects add (or, for gain/delay/offset, change), and of the
