@@ -2,7 +2,7 @@
 # Checks that every project C++ file follows .clang-format; with --fix, rewrites them in place.
 #
 # Usage: .ci/format.sh [--fix] [PATH...]
-#   PATH   files or directories to check (default: gen runtime sim tests bench fuzz)
+#   PATH   files or directories to check (default: gen runtime sim plot tests bench fuzz)
 # Environment: CLANG_FORMAT (binary, default clang-format-14 or clang-format). The version
 # matters: different clang-format releases format some constructs differently.
 # Exit status: 0 all formatted (or fixed), 1 some file would change, 2 setup error.
@@ -19,7 +19,7 @@ while (($#)); do
     *) paths+=("$1"); shift ;;
   esac
 done
-((${#paths[@]})) || paths=(gen runtime sim tests bench fuzz)
+((${#paths[@]})) || paths=(gen runtime sim plot tests bench fuzz)
 
 format=${CLANG_FORMAT:-}
 if [[ -z $format ]]; then

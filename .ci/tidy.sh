@@ -11,7 +11,7 @@
 #   FILE_REGEX     only files whose path matches one of these (e.g. gen/sym/)
 # Environment: CLANG_TIDY (binary, default clang-tidy-14 or clang-tidy).
 #
-# Scope: the shipped code, gen/, runtime/ and sim/ sources as listed in compile_commands.json (so only
+# Scope: the shipped code, gen/, runtime/, sim/ and plot/ sources as listed in compile_commands.json (so only
 # what is actually built); with --all also tests/ and bench/ (about twice the time: GoogleTest and
 # Eigen make every test file a large translation unit). Never fuzz/ or third-party code.
 # Output: the findings, then a count per check, then a count per file. The full log is kept in
@@ -21,7 +21,7 @@ set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 build="$root/build/release"
 jobs=2
-scope='gen|runtime|sim'
+scope='gen|runtime|sim|plot'
 fix=()
 filters=()
 while (($#)); do
@@ -29,7 +29,7 @@ while (($#)); do
     -p) build=$(cd "$2" && pwd); shift 2 ;;
     -j) jobs=$2; shift 2 ;;
     --fix) fix=(-fix); shift ;;
-    --all) scope='gen|runtime|sim|tests|bench'; shift ;;
+    --all) scope='gen|runtime|sim|plot|tests|bench'; shift ;;
     -h|--help) awk 'NR > 1 && /^#/ { sub(/^# ?/, ""); print; next } NR > 1 { exit }' "$0"; exit 0 ;;
     -*) echo "tidy.sh: unknown option $1" >&2; exit 2 ;;
     *) filters+=("$1"); shift ;;

@@ -107,11 +107,23 @@ std::array<double, gen::kLinkParameters> link_parameters_with(const Payload& pay
   return link;
 }
 
-Parameters true_parameters(const Payload& payload) {
-  const auto link = link_parameters_with(payload);
+Parameters true_parameters(const Payload& payload) { return true_parameters(payload, {}); }
+
+Parameters true_parameters(const Payload& payload, const std::array<bool, kDof>& motor_apart) {
+  auto link = link_parameters_with(payload);
+  for (int k = 0; k < kDof; ++k) {
+    if (motor_apart[k]) link[link_index(("jm" + std::to_string(k + 1)).c_str())] = 0.0;
+  }
   Parameters p{};
   gen::base_parameters_from_link<double>(link.data(), p.data());
   return p;
+}
+
+Joints rotor_inertias() {
+  Joints out{};
+  for (int k = 0; k < kDof; ++k)
+    out[k] = gen::kNominalLinkParameters[link_index(("jm" + std::to_string(k + 1)).c_str())];
+  return out;
 }
 
 Vec3 forearm_point(const Joints& q, const Vec3& point_in_forearm) {

@@ -36,6 +36,14 @@ std::array<double, dyncc::generated::kraft_right::kLinkParameters> link_paramete
 /// base_parameters_from_link from link_parameters_with (payload.mass = 0: the nominal ones).
 Parameters true_parameters(const Payload& payload);
 
+/// The same with the reflected rotor inertia (jm1..jm3) left out of the joints for which
+/// `motor_apart` is true: what the links alone are when those motors are bodies of their own
+/// (a transmission that is not rigid, sim/joint_effects.hpp).
+Parameters true_parameters(const Payload& payload, const std::array<bool, kDof>& motor_apart);
+
+/// The description's reflected rotor inertias jm1..jm3 (kg m^2), about each coordinate.
+Joints rotor_inertias();
+
 /// Position (m, base frame, z up) of a point given in the forearm's D-H frame, at q.
 Vec3 forearm_point(const Joints& q, const Vec3& point_in_forearm);
 

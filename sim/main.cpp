@@ -1,5 +1,5 @@
-// dyncc-sim: the tele-operation simulation's command line, run as `dyncc simulate` and
-// `dyncc report` (gen/cli forwards to it; see sim/README.md).
+// dyncc-sim: the tele-operation simulation's command line, run as `dyncc simulate`,
+// `dyncc report` and `dyncc excite` (gen/cli forwards to it; see sim/README.md).
 #include <fmt/format.h>
 #include <unistd.h>
 
@@ -11,6 +11,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "effects_file.hpp"
+#include "excite.hpp"
 #include "findings.hpp"
 #include "report.hpp"
 #include "scenario.hpp"
@@ -116,8 +118,56 @@ int run_report(const ReportOptions& o) {
   return all ? 0 : 1;
 }
 
+struct ExciteOptions {
+  std::string plant = "dyncc", trajectory = "fourier", effects, out, mjcf = default_mjcf();
+  double rate = 200, duration = 60, quantum = 2 * 3.14159265358979323846 / 4096, noise = 3e-4;
+  unsigned seed = 1;
+};
+
+int run_excite(const ExciteOptions& o) {
+  ExciteSettings s;
+  s.plant = plant_kind(o.plant);
+  s.mjcf = o.mjcf;
+  s.trajectory = o.trajectory == "teleop" ? Trajectory::teleop : Trajectory::fourier;
+  s.rate = o.rate;
+  s.duration = o.duration;
+  s.seed = o.seed;
+  s.quantum = o.quantum;
+  s.noise = o.noise;
+  if (!o.effects.empty()) {
+    s.effects = read_effects(o.effects);
+    require_playable(s.effects, s.plant, o.effects);
+  }
+  ProgressBar bar;
+  const ExciteRun run = excite(s, [&](double f) { bar(fmt::format("excite {} {}", o.plant, o.trajectory), f); });
+  write_excite_log(run, o.out);
+  std::fputs(excite_summary(run).c_str(), stdout);
+  std::printf("wrote %s\n", o.out.c_str());
+  return 0;
+}
+
+void add_excite_command(CLI::App& app, ExciteOptions& ex, int& exit_code) {
+  auto* cmd = app.add_subcommand(
+      "excite", "A log for checking the diagnosis: the arm in closed loop with hidden effects (t,q1..3,tau1..3)");
+  cmd->add_option("--plant", ex.plant, "dyncc (generated model, RK4) or mujoco (the exported MJCF)")
+      ->check(CLI::IsMember({"dyncc", "mujoco"}));
+  cmd->add_option("--trajectory", ex.trajectory, "fourier (excitation) or teleop (the paper task's master motion)")
+      ->check(CLI::IsMember({"fourier", "teleop"}));
+  cmd->add_option("--rate", ex.rate, "control and log rate (Hz)")->check(CLI::Range(81.0, 1000.0));
+  cmd->add_option("--duration", ex.duration, "seconds to log")->check(CLI::Range(0.1, 3600.0));
+  cmd->add_option("--seed", ex.seed, "seed of the Fourier series, the sensor noise and the operator's run");
+  cmd->add_option("--effects", ex.effects, "hidden effects (JSON, see sim/README.md); none if left out");
+  cmd->add_option("--out", ex.out, "the log (CSV)")->required();
+  cmd->add_option("--quantum", ex.quantum, "position quantisation step (rad; 0: none; default 2 pi / 4096)")
+      ->check(CLI::Range(0.0, 0.1));
+  cmd->add_option("--noise", ex.noise, "position noise, standard deviation (rad; default 0.3e-3)")
+      ->check(CLI::Range(0.0, 0.1));
+  cmd->add_option("--mjcf", ex.mjcf, "the exported Kraft MJCF (default: kraft.xml next to this program)");
+  cmd->callback([&] { exit_code = run_excite(ex); });
+}
+
 int run(int argc, char** argv) {
-  CLI::App app{"dyncc-sim: the tele-operated Kraft arm (run as `dyncc simulate` and `dyncc report`)"};
+  CLI::App app{"dyncc-sim: the tele-operated Kraft arm (run as `dyncc simulate`, `dyncc report`, `dyncc excite`)"};
   app.require_subcommand(1);
   int exit_code = 0;
   SimulateOptions sim;
@@ -150,6 +200,8 @@ int run(int argc, char** argv) {
       ->check(CLI::IsMember({"dyncc", "mujoco", "both"}));
   report_cmd->add_option("--mjcf", report.mjcf, "the exported Kraft MJCF (default: kraft.xml next to this program)");
   report_cmd->callback([&] { exit_code = run_report(report); });
+  ExciteOptions excite_options;
+  add_excite_command(app, excite_options, exit_code);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -282,6 +282,7 @@ class MujocoPlant final : public Plant {
       std::fill_n(m->dof_frictionloss, m->nv, 0.0);
       std::fill_n(m->dof_damping, m->nv, 0.0);
     }
+    add_joint_effects();
     for (int e = 0; e < m->neq; ++e) {
       m->eq_solref[offset(e, mjNREF)] = 2.0 * m->opt.timestep;
       m->eq_solref[offset(e, mjNREF) + 1] = 1.0;
@@ -327,7 +328,10 @@ class MujocoPlant final : public Plant {
     // without the rounding of many short calls adding up.
     elapsed_ += duration;
     const auto target = static_cast<long long>(std::llround(elapsed_ * settings_.rate));
-    for (; steps_ < target; ++steps_) mj_step(m, d);
+    for (; steps_ < target; ++steps_) {
+      if (stribeck_) follow_stribeck();
+      mj_step(m, d);
+    }
     // MuJoCo resets the state silently when it diverges; a simulation must not carry on.
     if (d->warning[mjWARN_BADQACC].number > 0 || d->warning[mjWARN_BADQPOS].number > 0 ||
         d->warning[mjWARN_BADQVEL].number > 0) {
@@ -456,6 +460,37 @@ class MujocoPlant final : public Plant {
     }
   }
 
+  // The hidden joint effects on the joint that carries each coordinate (joint = q / gear, so a
+  // coordinate torque f is f * gear on the joint and a coefficient of qd is one of gear^2 qd_joint):
+  // extra Coulomb friction as frictionloss (MuJoCo's dry friction, a constraint that also holds the
+  // joint at rest), extra viscous friction as damping, extra reflected inertia as armature.
+  void add_joint_effects() {
+    mjModel* m = model_.get();
+    const JointEffects& e = settings_.effects;
+    for (std::size_t i = 0; i < kDof; ++i) {
+      const int v = dof_[i];
+      const double g = gear_[i];
+      m->dof_frictionloss[v] += e.coulomb[i] * std::abs(g);
+      m->dof_damping[v] += e.viscous[i] * g * g;
+      m->dof_armature[v] += e.rotor_inertia[i] * g * g;
+      frictionloss_[i] = m->dof_frictionloss[v];
+      stribeck_ = stribeck_ || e.stribeck[i] > 0.0;
+    }
+  }
+
+  // Stribeck friction as dry friction whose level follows the speed: before each step the
+  // frictionloss is the Coulomb level plus the excess at the joint's current speed (MuJoCo keeps
+  // treating it as a constraint, so the joint still sticks below the breakaway torque).
+  void follow_stribeck() {
+    mjModel* m = model_.get();
+    for (std::size_t i = 0; i < kDof; ++i) {
+      const int v = dof_[i];
+      const double speed = data_->qvel[v] * gear_[i];
+      m->dof_frictionloss[v] =
+          frictionloss_[i] + stribeck_excess(settings_.effects, static_cast<int>(i), speed) * std::abs(gear_[i]);
+    }
+  }
+
   // The payload as a solid sphere at its body origin. MuJoCo caches the subtree masses at compile
   // time (mj_comPos divides by them), so the payload body's and all its ancestors' are updated too.
   void set_payload_mass(double mass) {
@@ -474,9 +509,11 @@ class MujocoPlant final : public Plant {
   PlantSettings settings_;
   ModelPtr model_;
   DataPtr data_;
-  std::array<int, kDof> joint_{};    // the joint that carries coordinate i alone
-  std::array<int, kDof> dof_{};      // its degree of freedom
-  std::array<double, kDof> gear_{};  // joint = q / gear
+  std::array<int, kDof> joint_{};            // the joint that carries coordinate i alone
+  std::array<int, kDof> dof_{};              // its degree of freedom
+  std::array<double, kDof> gear_{};          // joint = q / gear
+  std::array<double, kDof> frictionloss_{};  // the coordinate joints' Coulomb level (joint units)
+  bool stribeck_ = false;                    // some joint's frictionloss follows its speed
   std::vector<Relation> relations_;
   int hook_geom_ = -1;
   int table_geom_ = -1;
@@ -490,6 +527,11 @@ class MujocoPlant final : public Plant {
 
 std::unique_ptr<Plant> make_mujoco_plant(const PlantSettings& settings, const std::string& mjcf_path) {
   if (!(settings.rate >= 1.0)) throw std::invalid_argument("MuJoCo plant: the rate must be at least 1 step/s");
+  if (!settings.effects.all_rigid()) {
+    throw std::invalid_argument(
+        "MuJoCo plant: its joints are rigid (the exported MJCF has one hinge per joint), so backlash and joint "
+        "elasticity need the rigid plant (--plant dyncc)");
+  }
   ModelPtr model = load_model(augmented_mjcf(settings, mjcf_path), mjcf_path);
   return std::make_unique<MujocoPlant>(settings, std::move(model));
 }

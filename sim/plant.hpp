@@ -9,6 +9,7 @@
 #include <string>
 
 #include "arm.hpp"
+#include "joint_effects.hpp"
 
 namespace dyncc::sim {
 
@@ -28,6 +29,7 @@ struct PlantSettings {
   Table table;
   double rate = 2000.0;        // integration steps per second (>= 1 kHz)
   bool joint_friction = true;  // Coulomb and viscous joint friction of the description
+  JointEffects effects;        // hidden effects in the joints beyond the description (none by default)
 };
 
 struct ContactState {
@@ -38,25 +40,34 @@ struct ContactState {
 class Plant {
  public:
   virtual ~Plant() = default;
-  /// At rest at q, payload detached.
+  /// At rest at q, payload detached (a non-rigid transmission: its motor where it holds the link
+  /// at q against gravity).
   virtual void reset(const Joints& q) = 0;
   /// Advances by `duration` seconds with the joint torque `tau` held constant.
   virtual void advance(const Joints& tau, double duration) = 0;
   /// Hangs the payload on the hook (true) or takes it off (false).
   virtual void set_payload_attached(bool attached) = 0;
-  [[nodiscard]] virtual Joints q() const = 0;
+  [[nodiscard]] virtual Joints q() const = 0;  // the links' angles
   [[nodiscard]] virtual Joints qd() const = 0;
+  /// Where the joint sensors sit: the motor side of a joint whose transmission is not rigid (the
+  /// deflection of the transmission is then between sensor and link), the link otherwise.
+  [[nodiscard]] virtual Joints sensor_q() const { return q(); }
   [[nodiscard]] virtual ContactState contact() const = 0;
   [[nodiscard]] virtual bool payload_attached() const = 0;
   [[nodiscard]] virtual std::string name() const = 0;
 };
 
 /// The generated Kraft model with the true (nominal) parameters, payload merged by dyncc's
-/// base-parameter map, table contact as a penalty force through the hook Jacobian, RK4.
+/// base-parameter map, table contact as a penalty force through the hook Jacobian, RK4. Every
+/// joint effect is supported; a joint with a non-rigid transmission gets a motor body (two more
+/// states) carrying its reflected rotor inertia.
 std::unique_ptr<Plant> make_rigid_plant(const PlantSettings& settings);
 
 /// MuJoCo on the exported MJCF (`dyncc export robots/kraft.yaml --format mjcf`), with a hook
-/// geom, a payload body and a table added; throws std::runtime_error if it does not load.
+/// geom, a payload body and a table added; throws std::runtime_error if it does not load. Joint
+/// effects: extra friction as frictionloss (Stribeck: a frictionloss that follows the speed),
+/// damping and armature; its joints are rigid, so a non-rigid transmission throws
+/// std::invalid_argument.
 std::unique_ptr<Plant> make_mujoco_plant(const PlantSettings& settings, const std::string& mjcf_path);
 
 /// MuJoCo's own kinematics of a MuJoCo plant, for tests of its loop closure and frames: the value

@@ -13,6 +13,10 @@
 namespace dyncc::sim {
 namespace {
 
+using plot::Figure;
+using plot::Panel;
+using plot::Series;
+using plot::write_figure;
 using Pick = std::function<double(const Sample&)>;
 
 Series series(const Run& run, const std::string& label, const Pick& pick, bool dashed = false) {

@@ -5,13 +5,13 @@
 #include <cstring>
 #include <fstream>
 #include <optional>
-#include <random>
 #include <stdexcept>
 
 #include "dyncc/runtime/position_estimator.hpp"
 #include "dyncc/runtime/slotine_li_controller.hpp"
 #include "operator.hpp"
 #include "plant.hpp"
+#include "potentiometers.hpp"
 
 namespace dyncc::sim {
 namespace {
@@ -65,25 +65,6 @@ std::unique_ptr<Plant> make_plant(const ScenarioSettings& s, const PlantSettings
   if (s.plant == PlantKind::mujoco) return make_mujoco_plant(p, s.mjcf);
   return make_rigid_plant(p);
 }
-
-// A potentiometer: noise, then quantisation.
-class Potentiometers {
- public:
-  Potentiometers(double quantum, double noise, unsigned seed) : quantum_(quantum), noise_(0.0, noise), random_(seed) {}
-  Joints read(const Joints& q) {
-    Joints out{};
-    for (int k = 0; k < kDof; ++k) {
-      const double x = q[k] + (noise_.stddev() > 0 ? noise_(random_) : 0.0);
-      out[k] = quantum_ > 0 ? quantum_ * std::round(x / quantum_) : x;
-    }
-    return out;
-  }
-
- private:
-  double quantum_;
-  std::normal_distribution<double> noise_;
-  std::mt19937 random_;
-};
 
 }  // namespace
 

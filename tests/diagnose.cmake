@@ -1,4 +1,6 @@
-# The sim-to-real diagnosis (gen/diagnose): log reading and its errors, the audit, and blind
-# checks on synthetic logs with one known effect injected.
-dyncc_add_test(diagnose_tests diagnose_log_test.cpp diagnose_effect_test.cpp diagnose_cli_test.cpp)
+# The sim-to-real diagnosis (gen/diagnose): log reading and its errors, the audit, blind
+# checks on synthetic logs with one known effect injected, and the numbers behind the report's figures.
+dyncc_add_test(diagnose_tests diagnose_log_test.cpp diagnose_effect_test.cpp diagnose_cli_test.cpp
+               diagnose_report_test.cpp)
 target_link_libraries(diagnose_tests PRIVATE dyncc_diagnose dyncc_pipeline nlohmann_json::nlohmann_json)
+add_dependencies(diagnose_tests dyncc)  # the command-line tests run it

@@ -3,12 +3,14 @@
 
 #include <filesystem>
 #include <fstream>
+#include <stdexcept>
 
 #include "cli/commands.hpp"
 #include "cli/robot_input.hpp"
 #include "diagnose/dataset.hpp"
 #include "diagnose/diagnosis.hpp"
 #include "diagnose/diagnosis_output.hpp"
+#include "diagnose/diagnosis_report.hpp"
 #include "diagnose/joint_log.hpp"
 
 namespace dyncc::cli {
@@ -51,6 +53,12 @@ int run_diagnose(const DiagnoseOptions& o) {
     if (error || !write(std::filesystem::path(o.out) / "diagnosis.json", json) ||
         !write(std::filesystem::path(o.out) / "summary.txt", text)) {
       if (error) fmt::print(stderr, "{}: error: cannot create the folder: {}\n", o.out, error.message());
+      return kBadInput;
+    }
+    try {
+      diagnose::write_diagnosis_report(data, *derivation, d, o.out);
+    } catch (const std::runtime_error& e) {
+      fmt::print(stderr, "{}: error: cannot write the report: {}\n", o.out, e.what());
       return kBadInput;
     }
   }

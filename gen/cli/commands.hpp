@@ -77,7 +77,7 @@ struct BenchOptions {
 };
 int run_sim2real_bench(const BenchOptions& o);
 
-/// `simulate` and `report`: run dyncc-sim (built next to dyncc) with the same arguments.
+/// `simulate`, `report` and `excite`: run dyncc-sim (built next to dyncc) with the same arguments.
 int run_simulator(const std::string& command, const std::vector<std::string>& arguments);
 
 }  // namespace dyncc::cli

@@ -100,7 +100,8 @@ void add_output_commands(CLI::App& app, int& exit_code) {
                                           "the gap shrinks once the cause is added");
   diagnose_cmd->add_option("ROBOT", diag->robot, "Robot description (YAML)")->required();
   diagnose_cmd->add_option("LOGS", diag->logs, "CSV logs: t, q1..qn, tau1..taun (optional qd*, qdd*)")->required();
-  diagnose_cmd->add_option("--out", diag->out, "Folder for diagnosis.json and summary.txt");
+  diagnose_cmd->add_option("--out", diag->out,
+                           "Folder for diagnosis.json, summary.txt and report.html (with its figures)");
   diagnose_cmd->add_option("--json", diag->json, "Write the JSON here");
   diagnose_cmd->add_option("--map", diag->map, "Rename foreign columns: THEIR=OURS,... (e.g. time=t,pos1=q1)");
   diagnose_cmd->callback([&exit_code, diag] { exit_code = run_diagnose(*diag); });
@@ -117,7 +118,7 @@ void add_output_commands(CLI::App& app, int& exit_code) {
 }
 
 // The simulation (sim/) is its own program, dyncc-sim: it links the runtime, which the generator
-// must not. These two commands hand every argument after their name to it, --help included.
+// must not. These commands hand every argument after their name to it, --help included.
 void add_simulation_commands(CLI::App& app, int& exit_code) {
   struct Entry {
     const char* name;
@@ -125,7 +126,8 @@ void add_simulation_commands(CLI::App& app, int& exit_code) {
   };
   for (const Entry e :
        {Entry{"simulate", "Simulate the tele-operated Kraft arm in one of the paper's scenarios (--help for more)"},
-        Entry{"report", "Run every scenario on both plants and write one HTML page with the figures and tables"}}) {
+        Entry{"report", "Run every scenario on both plants and write one HTML page with the figures and tables"},
+        Entry{"excite", "Log the Kraft arm in closed loop with hidden effects, for checking the diagnosis (--help)"}}) {
     auto* sub = app.add_subcommand(e.name, e.help);
     sub->prefix_command();
     sub->set_help_flag();

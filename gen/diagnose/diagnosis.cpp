@@ -2,7 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
+#include <deque>
 #include <map>
+#include <numbers>
 #include <numeric>
 
 #include "diagnose/crossval.hpp"
@@ -94,6 +97,11 @@ double physical(Reading reading, double theta) {
   return theta;
 }
 
+// Whether an effect has one column set per joint (friction, gain, offset, ...).
+bool per_joint(const Effect& e) {
+  return !e.joint_of.empty() && std::all_of(e.joint_of.begin(), e.joint_of.end(), [](int j) { return j >= 0; });
+}
+
 // For an effect with one column set per joint (friction, gain, offset, ...), the joints whose
 // own columns carry a material, significant part of the fit: where the effect IS, rather than
 // where its fit happens to lower the residual (an offset of joint 2 changes joint 3's torque too).
@@ -155,8 +163,7 @@ RankedEffect describe(const Candidate& c, const Eigen::VectorXd& before, Eigen::
   r.columns = static_cast<std::size_t>(e.columns.cols());
   r.profile_name = e.profile_name;
   r.profile = e.profile;
-  const bool per_joint = std::all_of(e.joint_of.begin(), e.joint_of.end(), [](int j) { return j >= 0; });
-  if (per_joint) {
+  if (per_joint(e)) {
     r.joints = own_joints(c, offset, torque_rms);
   } else {
     for (Eigen::Index j = 0; j < before.size(); ++j) {
@@ -182,19 +189,63 @@ RankedEffect describe(const Candidate& c, const Eigen::VectorXd& before, Eigen::
 // a contact's force and stiffness (a surface only pushes) are not negative (beyond twice their
 // error). A fit that needs them negative is the effect's columns soaking up something else (e.g.
 // a Stribeck "excess" below Coulomb sharpening a mis-estimated sign near zero velocity).
-bool plausible(const RankedEffect& r) {
+// A correction to a quantity the description already has (its Coulomb and viscous friction, its
+// rotor inertia) is judged with it: the total must not be negative, the correction may be.
+bool plausible(const RankedEffect& r, const pipeline::Derivation& derivation) {
+  const Eigen::VectorXd nominal = derivation.numeric->nominal_standard_values();
+  const auto& params = derivation.model.params;
+  auto described = [&](const std::string& name, const char* prefix, const std::vector<int>& of) {
+    if (name.rfind(prefix, 0) != 0 || name.size() <= 2) return 0.0;
+    const int joint = std::atoi(name.c_str() + 2) - 1;
+    if (joint < 0 || joint >= static_cast<int>(of.size())) return 0.0;
+    const int index = of[static_cast<std::size_t>(joint)];
+    return index >= 0 ? nominal[index] : 0.0;
+  };
   for (const FittedParameter& p : r.parameters) {
     const bool non_negative = p.name.rfind("fc", 0) == 0 || p.name.rfind("fv", 0) == 0 || p.name.rfind("fs", 0) == 0 ||
                               p.name == "mass" || p.name.rfind("ia", 0) == 0 || p.name == "force" ||
                               p.name == "stiffness";
-    if (non_negative && p.value < -2.0 * p.error) return false;
+    const double total = p.value + described(p.name, "fc", params.coulomb_of) +
+                         described(p.name, "fv", params.viscous_of) + described(p.name, "ia", params.rotor_of);
+    if (non_negative && total < -2.0 * p.error) return false;
   }
   return true;
 }
 
 double normal_cdf(double x) { return 0.5 * std::erfc(-x / std::sqrt(2.0)); }
 
-Gap locate(const Dataset& d, const Eigen::VectorXd& r) {
+// What the model's own friction is uncertain by: its Coulomb term with the velocity estimate off
+// by one standard error (from the positions' noise and quantisation through the filter's
+// bandwidth), through the same filter as the residual. A reversal's sign change is placed only
+// as well as the velocity's zero is known, so this much residual at reversals is no evidence of a
+// missing effect.
+Eigen::VectorXd sign_floor(const Dataset& d, const pipeline::Derivation& derivation) {
+  const Eigen::Index n = d.n, samples = d.samples();
+  const Eigen::VectorXd nominal = derivation.numeric->nominal_standard_values();
+  const auto& coulomb_of = derivation.model.params.coulomb_of;
+  Eigen::VectorXd floor = Eigen::VectorXd::Zero(n);
+  for (Eigen::Index j = 0; j < n && j < static_cast<Eigen::Index>(coulomb_of.size()); ++j) {
+    const int index = coulomb_of[static_cast<std::size_t>(j)];
+    if (index < 0 || nominal[index] == 0) continue;
+    double position_error = 0;
+    for (const Audit& a : d.audits) {
+      const JointAudit& ja = a.joints[static_cast<std::size_t>(j)];
+      position_error = std::max(position_error, std::hypot(ja.position_noise, ja.quantum / std::sqrt(12.0)));
+    }
+    const double velocity_error = 2 * std::numbers::pi * d.cutoff * position_error;
+    Eigen::MatrixXd change = Eigen::MatrixXd::Zero(samples * n, 1);
+    for (Eigen::Index s = 0; s < samples; ++s) {
+      const double v = d.qd(s, j);
+      change(s * n + j, 0) =
+          0.5 * nominal[index] *
+          (std::tanh((v + velocity_error) / kSignVelocity) - std::tanh((v - velocity_error) / kSignVelocity));
+    }
+    floor[j] = joint_rms(d.condition(change).col(0), n)[j];
+  }
+  return floor;
+}
+
+Gap locate(const Dataset& d, const Eigen::VectorXd& r, const pipeline::Derivation& derivation) {
   Gap g;
   const Eigen::Index n = d.n, samples = d.rows();
   g.residual_rms = joint_rms(r, n);
@@ -208,6 +259,7 @@ Gap locate(const Dataset& d, const Eigen::VectorXd& r) {
       g.noise_floor[j] = std::max(g.noise_floor[j], a.joints[static_cast<std::size_t>(j)].torque_noise * band);
     }
   }
+  g.sign_floor = sign_floor(d, derivation);
   // Time windows of about 2 s (at least 10 rows), flagged at twice the median window RMS.
   const auto length = std::max<Eigen::Index>(10, static_cast<Eigen::Index>(2.0 / d.step));
   std::vector<std::pair<Eigen::Index, double>> windows;
@@ -272,17 +324,107 @@ Gap locate(const Dataset& d, const Eigen::VectorXd& r) {
   return g;
 }
 
+// The effect's columns of the given joints only (0-based); the same effect, narrowed.
+Effect narrowed(const Effect& e, const std::vector<int>& joints) {
+  Effect out = e;
+  std::vector<Eigen::Index> keep;
+  for (std::size_t k = 0; k < e.joint_of.size(); ++k) {
+    if (std::find(joints.begin(), joints.end(), e.joint_of[k]) != joints.end())
+      keep.push_back(static_cast<Eigen::Index>(k));
+  }
+  out.columns.resize(e.columns.rows(), static_cast<Eigen::Index>(keep.size()));
+  out.parameters.clear();
+  out.joint_of.clear();
+  out.reading.clear();
+  for (std::size_t c = 0; c < keep.size(); ++c) {
+    const auto k = static_cast<std::size_t>(keep[c]);
+    out.columns.col(static_cast<Eigen::Index>(c)) = e.columns.col(keep[c]);
+    out.parameters.push_back(e.parameters[k]);
+    out.joint_of.push_back(e.joint_of[k]);
+    out.reading.push_back(e.reading[k]);
+  }
+  return out;
+}
+
+// Once every effect is in: all of them fitted together, each per-joint effect narrowed once more
+// to the joints its own columns still carry (an offset of joint 3 that only stood in for a gain
+// of joint 5 until the gain came in is dropped), and every effect's parameters read from that
+// joint fit rather than from the step that accepted it; one whose own columns carry nothing any
+// more is dropped.
+void refit_together(Diagnosis& out, const Eigen::VectorXd& r0, const Eigen::VectorXd& weight, Eigen::Index n) {
+  if (out.accepted_effects.empty()) return;
+  auto stacked = [&]() {
+    Eigen::Index columns = 0;
+    for (const Effect& e : out.accepted_effects) columns += e.columns.cols();
+    Eigen::MatrixXd all(r0.size(), columns);
+    Eigen::Index at = 0;
+    for (const Effect& e : out.accepted_effects) {
+      all.middleCols(at, e.columns.cols()) = e.columns;
+      at += e.columns.cols();
+    }
+    return all;
+  };
+  Candidate joint;
+  joint.cv = cross_validate(r0, stacked(), n, weight);
+  joint.after = joint_rms(joint.cv.heldout, n);
+  bool narrowed_any = false;
+  Eigen::Index at = 0;
+  std::vector<bool> gone(out.accepted_effects.size(), false);
+  for (std::size_t k = 0; k < out.accepted_effects.size(); ++k) {
+    Effect& e = out.accepted_effects[k];
+    const Eigen::Index width = e.columns.cols();
+    if (per_joint(e)) {
+      joint.effect = &e;
+      const std::vector<int> joints = own_joints(joint, at, out.gap.torque_rms);
+      if (joints.empty()) {  // the later effects explain all it did
+        gone[k] = true;
+        narrowed_any = true;
+      } else if (joints.size() < out.selected[k].joints.size()) {
+        std::vector<int> kept;
+        kept.reserve(joints.size());
+        for (const int j : joints) kept.push_back(j - 1);
+        e = narrowed(e, kept);
+        narrowed_any = true;
+      }
+    }
+    at += width;
+  }
+  for (std::size_t k = gone.size(); k-- > 0;) {
+    if (!gone[k]) continue;
+    out.accepted_effects.erase(out.accepted_effects.begin() + static_cast<std::ptrdiff_t>(k));
+    out.selected.erase(out.selected.begin() + static_cast<std::ptrdiff_t>(k));
+  }
+  if (out.accepted_effects.empty()) {
+    out.final_after = joint_rms(r0, n);
+    return;
+  }
+  if (narrowed_any) joint.cv = cross_validate(r0, stacked(), n, weight);
+  joint.after = joint_rms(joint.cv.heldout, n);
+  at = 0;
+  for (std::size_t k = 0; k < out.accepted_effects.size(); ++k) {
+    joint.effect = &out.accepted_effects[k];
+    const RankedEffect refitted = describe(joint, out.selected[k].before, at, out.gap.torque_rms);
+    if (per_joint(out.accepted_effects[k])) out.selected[k].joints = refitted.joints;
+    out.selected[k].parameters = refitted.parameters;
+    at += out.accepted_effects[k].columns.cols();
+  }
+  out.final_after = joint_rms(joint.cv.heldout, n);
+}
+
 }  // namespace
 
 Diagnosis diagnose(const Dataset& d, const pipeline::Derivation& derivation) {
   Diagnosis out;
   const Eigen::Index n = d.n;
   const Eigen::VectorXd r0 = d.residual;
-  out.gap = locate(d, r0);
+  out.gap = locate(d, r0, derivation);
   const Eigen::VectorXd weight =
       out.gap.torque_rms.cwiseMax(1e-3 * out.gap.torque_rms.maxCoeff() + 1e-12).cwiseInverse();
+  out.weight = weight;
   const std::vector<Effect> effects = candidate_effects(d, derivation);
 
+  std::deque<Effect> narrowed_effects;  // stable addresses: candidates point at their effect
+  std::deque<Candidate> narrowed_candidates;
   Eigen::MatrixXd accepted(r0.size(), 0);
   Eigen::VectorXd baseline = r0;  // held-out residual of the model so far
   std::vector<std::string> taken;
@@ -293,7 +435,7 @@ Diagnosis diagnose(const Dataset& d, const pipeline::Derivation& derivation) {
     for (const Effect& e : effects) {
       if (std::find(taken.begin(), taken.end(), e.family) != taken.end()) continue;
       Candidate c = evaluate(e, accepted, r0, baseline, weight, n);
-      c.plausible = plausible(describe(c, before, accepted.cols(), out.gap.torque_rms));
+      c.plausible = plausible(describe(c, before, accepted.cols(), out.gap.torque_rms), derivation);
       auto it = best.find(e.name);
       const bool better = it == best.end() || (c.plausible && !it->second.plausible) ||
                           (c.plausible == it->second.plausible && c.shrink > it->second.shrink);
@@ -312,24 +454,53 @@ Diagnosis diagnose(const Dataset& d, const pipeline::Derivation& derivation) {
       }
       out.within_model = describe(best.at("inertial_parameters"), before, 0, out.gap.torque_rms);
     }
-    // Parsimony among equal explanations: two candidates are equal when what one explains beyond
-    // the other is immaterial (below kMaterial of the torque RMS); of equals, the fewest columns
-    // win, and equals whose columns do not contain the chosen ones are alternatives ("A or B").
-    std::stable_partition(order.begin(), order.end(), [](const Candidate* c) { return c->plausible; });
-    const Candidate* top = order.front();
+    auto acceptable = [](const Candidate* c) {
+      return c->plausible && c->shrink >= kAcceptShrink && c->low > 0.0 && c->material >= kMaterial;
+    };
+    // The best acceptable candidate leads (one above it whose interval still includes 0 does not
+    // block it). Parsimony among equal explanations: two candidates are equal when what one
+    // explains beyond the other is immaterial (below kMaterial of the torque RMS); of acceptable
+    // equals the fewest columns win, and equals whose columns do not contain the chosen ones are
+    // alternatives ("A or B").
+    const auto first = std::find_if(order.begin(), order.end(), acceptable);
+    if (first == order.end()) break;
+    const Candidate* top = *first;
     auto equal = [&](const Candidate* c) {
       return c->explained >= top->explained - kMaterial * kMaterial ||
              c->shrink >= top->shrink - 0.5 * (top->high - top->low);
     };
     const Candidate* chosen = top;
     for (const Candidate* c : order) {
-      if (c->plausible && equal(c) && c->effect->columns.cols() < chosen->effect->columns.cols()) chosen = c;
-    }
-    if (!(chosen->plausible && chosen->shrink >= kAcceptShrink && chosen->low > 0.0 && chosen->material >= kMaterial)) {
-      break;
+      if (acceptable(c) && equal(c) && c->effect->columns.cols() < chosen->effect->columns.cols()) chosen = c;
     }
     RankedEffect r = describe(*chosen, before, accepted.cols(), out.gap.torque_rms);
     if (r.joints.empty()) break;  // explains nothing material on any joint of its own
+    if (per_joint(*chosen->effect)) {
+      // Only the joints where it IS: a joint whose part another per-joint effect explains better on
+      // its own (viscous friction of joint 3 that Coulomb columns of joint 3 half absorb) is left
+      // for that effect's turn; the columns of the remaining joints are what is accepted.
+      std::vector<int> kept;
+      for (const int joint : r.joints) {
+        const Effect mine = narrowed(*chosen->effect, {joint - 1});
+        const double own = evaluate(mine, accepted, r0, baseline, weight, n).shrink;
+        bool beaten = false;
+        for (const Effect& e : effects) {
+          if (beaten || e.family == chosen->effect->family || !per_joint(e) ||
+              std::find(taken.begin(), taken.end(), e.family) != taken.end()) {
+            continue;
+          }
+          Candidate other = evaluate(narrowed(e, {joint - 1}), accepted, r0, baseline, weight, n);
+          beaten = other.shrink > own + kAcceptShrink * own + 0.01 && other.low > 0.0;
+        }
+        if (!beaten) kept.push_back(joint - 1);
+      }
+      if (kept.empty()) break;
+      narrowed_effects.push_back(narrowed(*chosen->effect, kept));
+      narrowed_candidates.push_back(evaluate(narrowed_effects.back(), accepted, r0, baseline, weight, n));
+      chosen = &narrowed_candidates.back();
+      r = describe(*chosen, before, accepted.cols(), out.gap.torque_rms);
+      if (r.joints.empty()) break;
+    }
     r.accepted = true;
     for (const Candidate* c : order) {
       if (c == chosen || !c->plausible || !equal(c)) continue;
@@ -338,6 +509,7 @@ Diagnosis diagnose(const Dataset& d, const pipeline::Derivation& derivation) {
       r.effect += " or " + c->effect->name;
     }
     out.selected.push_back(r);
+    out.accepted_effects.push_back(*chosen->effect);
     taken.push_back(chosen->effect->family);
     if (chosen->effect->family == "stribeck_friction") taken.emplace_back("coulomb_friction");
     Eigen::MatrixXd grown(r0.size(), accepted.cols() + chosen->effect->columns.cols());
@@ -346,11 +518,13 @@ Diagnosis diagnose(const Dataset& d, const pipeline::Derivation& derivation) {
     baseline = chosen->cv.heldout;
   }
   out.final_after = joint_rms(baseline, n);
+  refit_together(out, r0, weight, n);
 
   if (out.selected.empty()) {
-    // Structure left: a joint whose gap is material and above the noise floor.
+    // Structure left: a joint whose gap is material and above the noise floor (and above what the
+    // model's own friction is uncertain by at reversals, a systematic floor of its own).
     auto structured_on = [&](Eigen::Index j) {
-      return out.gap.residual_rms[j] > kNoiseFactor * out.gap.noise_floor[j] &&
+      return out.gap.residual_rms[j] > std::hypot(kNoiseFactor * out.gap.noise_floor[j], out.gap.sign_floor[j]) &&
              out.gap.residual_rms[j] > kMaterial * out.gap.torque_rms[j];
     };
     for (Eigen::Index j = 0; j < n; ++j) {

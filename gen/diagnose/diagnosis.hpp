@@ -48,6 +48,7 @@ struct Regime {
 
 struct Gap {
   Eigen::VectorXd torque_rms, residual_rms, percent, noise_floor;  // per joint
+  Eigen::VectorXd sign_floor;   // per joint: the model friction's uncertainty at reversals (see diagnosis.cpp)
   std::vector<Window> windows;  // flagged time windows (residual well above its usual level)
   std::vector<Regime> regimes;
 };
@@ -65,6 +66,10 @@ struct Diagnosis {
   RankedEffect within_model;           // inertial_parameters alone (re-identification)
   Verdict verdict;
   Eigen::VectorXd final_after;  // held-out RMS per joint with every selected effect
+  // What the selection fitted, for refits (the report's figures): the selected effects exactly as
+  // accepted (per-joint effects narrowed to their joints), in order, and the per-joint weights.
+  std::vector<Effect> accepted_effects;
+  Eigen::VectorXd weight;
 };
 
 Diagnosis diagnose(const Dataset& data, const pipeline::Derivation& derivation);

@@ -90,8 +90,8 @@ void add_contact_effects(const Dataset& d, const pipeline::Derivation& derivatio
           e.columns.block(s * n, 0, n, 4) = rows;
           e.columns.block(s * n, 4, n, 1) = (rows.col(0) + rows.rightCols(3) * c) * (h - z[s]);
         }
-        for (int k = 0; k < 5; ++k) {
-          e.parameters.emplace_back(names[k]);
+        for (const char* name : names) {
+          e.parameters.emplace_back(name);
           e.joint_of.push_back(-1);
           e.reading.push_back(Reading::as_is);
         }

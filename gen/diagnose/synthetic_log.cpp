@@ -140,6 +140,7 @@ struct Scene {
     Surface s;
     s.point = Eigen::Vector3d(0.8 * scale, 0.0, 0.2 * scale);
     std::vector<double> heights;
+    heights.reserve(bases.size());
     for (const auto& b : bases) heights.push_back(ContactGeometry::height(b, s.point));
     std::sort(heights.begin(), heights.end());
     s.height = heights[heights.size() / 4];

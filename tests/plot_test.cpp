@@ -1,9 +1,12 @@
-// sim/plot: write_figure checked by properties of the files it writes, not against stored
-// images. The PNG reads back at the size the layout promises (the width, a fixed margin plus one
+// plot/: write_figure checked by properties of the files it writes, not against stored images.
+// The PNG reads back at the size the layout promises (the width, a fixed margin plus one
 // panel_height per panel), a series shows up as coloured pixels (everything else in a figure is
 // grey, so colour can only come from the data), a dashed or broken line colours fewer pixels
-// than a solid one, a band is a light grey; the SVG is well-formed XML of the same size; bad data
-// does not throw and an unwritable file does, naming it.
+// than a solid one, a scatter colours only around its samples, labelled x ticks set the x range,
+// a band is a light grey; the SVG is well-formed XML of the same size; bad data does not throw
+// and an unwritable file does, naming it.
+#include "plot.hpp"
+
 #include <cairo.h>
 #include <gtest/gtest.h>
 #include <tinyxml2.h>
@@ -18,11 +21,10 @@
 #include <memory>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
-#include "plot.hpp"
-
-namespace dyncc::sim {
+namespace dyncc::plot {
 namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
@@ -128,7 +130,7 @@ class Plot : public ::testing::Test {
   void SetUp() override {
     const std::string test = ::testing::UnitTest::GetInstance()->current_test_info()->name();
     // The pid keeps a Release and a sanitizer run of the same test apart.
-    dir_ = std::filesystem::path(::testing::TempDir()) / ("dyncc_sim_plot_" + test + "_" + std::to_string(getpid()));
+    dir_ = std::filesystem::path(::testing::TempDir()) / ("dyncc_plot_" + test + "_" + std::to_string(getpid()));
     std::filesystem::remove_all(dir_);
     std::filesystem::create_directories(dir_);
   }
@@ -247,6 +249,63 @@ TEST_F(Plot, DashedAndBrokenLinesColourFewerPixels) {
   EXPECT_LT(pieces, full * 3 / 4);
 }
 
+/// The columns of the image that hold a coloured pixel: first and last.
+std::pair<int, int> coloured_columns(const Image& image) {
+  int first = image.width, last = -1;
+  for (int y = 0; y < image.height; ++y) {
+    for (int x = 0; x < image.width; ++x) {
+      if (!coloured(image.pixels[static_cast<std::size_t>(y) * static_cast<std::size_t>(image.width) +
+                                 static_cast<std::size_t>(x)])) {
+        continue;
+      }
+      first = std::min(first, x);
+      last = std::max(last, x);
+    }
+  }
+  return {first, last};
+}
+
+TEST_F(Plot, ScatterColoursOnlyAroundItsSamples) {
+  // Two samples far apart: as a line they are joined across the panel, as a scatter they are two
+  // dots with white between them.
+  Figure line;
+  line.panels = {Panel{"panel", "y", {Series{"", {0.0, 10.0}, {0.0, 1.0}}}, {}}};
+  Figure scatter = line;
+  scatter.panels[0].series[0].markers = true;
+  const long joined = count_coloured(written(line, "line"));
+  const Image dots = written(scatter, "scatter");
+  const long dotted = count_coloured(dots);
+  EXPECT_GT(joined, line.width / 2);
+  EXPECT_GT(dotted, 0) << "each sample is a visible dot";
+  EXPECT_LT(dotted, 100) << "two dots of a few pixels, no line";
+  // Many samples: each one a dot, more dots more colour.
+  Figure cloud = scatter;
+  Series& s = cloud.panels[0].series[0];
+  s.x.clear();
+  s.y.clear();
+  for (int i = 0; i <= 40; ++i) {
+    s.x.push_back(0.25 * i);
+    s.y.push_back(i % 2 == 0 ? 0.0 : 1.0);
+  }
+  EXPECT_GT(count_coloured(written(cloud, "cloud")), 10 * dotted);
+}
+
+TEST_F(Plot, LabelledTicksSetTheXRange) {
+  // A line over x in [0, 1]: alone it spans the frame; with labelled ticks at 0 and 4 it spans a
+  // quarter of it.
+  Figure automatic;
+  automatic.panels = {Panel{"panel", "y", {Series{"", {0.0, 1.0}, {0.5, 0.5}}}, {}}};
+  Figure categories = automatic;
+  categories.x_ticks = {{0.0, "nominal"}, {4.0, "after"}};
+  const auto [a0, a1] = coloured_columns(written(automatic, "automatic"));
+  const auto [c0, c1] = coloured_columns(written(categories, "categories"));
+  ASSERT_GT(a1, a0);
+  ASSERT_GT(c1, c0);
+  EXPECT_NEAR(c0, a0, 2) << "both start at the left of the frame";
+  const double share = static_cast<double>(c1 - c0) / static_cast<double>(a1 - a0);
+  EXPECT_NEAR(share, 0.25, 0.02);
+}
+
 TEST_F(Plot, ShadedIntervalIsALightGreyBand) {
   // The band goes in a panel without lines, so every pixel it changes is background or grid.
   Figure plain;
@@ -279,10 +338,12 @@ TEST_F(Plot, BadDataAndEmptyPanelsDoNotThrow) {
   odd.series.push_back(Series{"single point", {2.5}, {0.5}});
   odd.series.push_back(Series{"lengths differ", {0, 1, 2, 3, 4}, {1, 2}});
   odd.series.push_back(Series{"huge", {0, 10}, {-1e308, 1e308}});
+  odd.series.push_back(Series{"scatter with gaps", {0, kNaN, 2, kInf, 4}, {1, 2, kNaN, 3, 1e308}, false, true});
   Panel all_nan{"all NaN", "y", {Series{"nan", {kNaN, kNaN}, {kNaN, kNaN}}}, {}};
   Panel constant{"constant", "y", {Series{"zero", {0, 10}, {0, 0}}, Series{"tiny", {0, 10}, {1e-300, 1e-300}}}, {}};
   Panel empty{"", "", {}, {}};
   figure.panels = {odd, all_nan, constant, empty};
+  figure.x_ticks = {{kNaN, "not a number"}, {-kInf, "minus infinity"}, {1e308, "huge"}, {2.0, ""}};
   EXPECT_NO_THROW(write_figure(figure, dir_ / "odd"));
   const Image image = read_png(dir_ / "odd.png");
   EXPECT_EQ(image.width, figure.width);
@@ -326,4 +387,4 @@ TEST_F(Plot, NonPositiveSizeIsRejected) {
 }
 
 }  // namespace
-}  // namespace dyncc::sim
+}  // namespace dyncc::plot

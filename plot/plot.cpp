@@ -21,15 +21,16 @@
 
 // LeakSanitizer reads its built-in suppressions from this hook (sanitized builds only; elsewhere
 // nothing calls it). It lives here, with the drawing that causes the allocations, so every
-// program that plots (dyncc-sim, the tests) carries it. cairo's font cache and fontconfig's configuration are allocated
-// on the first text drawn and live until exit, and fontconfig links the parts of a pattern by offsets rather than
-// pointers, so LeakSanitizer cannot see they are still reachable.
+// program that plots (dyncc, dyncc-sim, the tests) carries it: write_figure pulls this object
+// out of the static library. cairo's font cache and fontconfig's configuration are allocated
+// on the first text drawn and live until exit, and fontconfig links the parts of a pattern by
+// offsets rather than pointers, so LeakSanitizer cannot see they are still reachable.
 extern "C" const char* __lsan_default_suppressions();   // NOLINT(bugprone-reserved-identifier)
 extern "C" const char* __lsan_default_suppressions() {  // NOLINT(bugprone-reserved-identifier)
   return "leak:libfontconfig.so\n";
 }
 
-namespace dyncc::sim {
+namespace dyncc::plot {
 namespace {
 
 // The image is  width  x  kTitleHeight + panels * panel_height + kXAxisHeight : each panel owns
@@ -43,6 +44,8 @@ constexpr double kPanelTitleHeight = 22;
 constexpr double kPanelGap = 10;  // frames of neighbouring panels must not touch
 
 constexpr double kLineWidth = 1.3;
+constexpr double kMarkerRadius = 1.6;
+constexpr double kMarkerOpacity = 0.55;
 constexpr double kTickLength = 4;
 // Beyond this many ticks the labels would overlap anyway; it also bounds the tick loop for
 // degenerate ranges (a span of a few ulp).
@@ -155,6 +158,17 @@ Ticks make_ticks(const Range& range, double target_ticks) {
   return ticks;
 }
 
+/// Labelled positions given by the caller, in place of numbers; non-finite ones are dropped.
+Ticks given_ticks(const std::vector<std::pair<double, std::string>>& given) {
+  Ticks ticks;
+  for (const auto& [value, label] : given) {
+    if (!std::isfinite(value)) continue;
+    ticks.values.push_back(std::clamp(value, -kLargestAxisValue, kLargestAxisValue));
+    ticks.labels.push_back(label);
+  }
+  return ticks;
+}
+
 /// Where a panel's frame is and which data rectangle it shows.
 struct Axes {
   double left = 0, top = 0, width = 1, height = 1;
@@ -217,8 +231,20 @@ void trace_series(cairo_t* cr, const Series& series, const Axes& axes) {
   }
 }
 
+/// A scatter: one dot per finite sample, as sub-paths of one path filled at once.
+void trace_markers(cairo_t* cr, const Series& series, const Axes& axes) {
+  const std::size_t n = std::min(series.x.size(), series.y.size());
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!std::isfinite(series.x[i]) || !std::isfinite(series.y[i])) continue;
+    cairo_new_sub_path(cr);
+    cairo_arc(cr, axes.px(series.x[i]), axes.py(series.y[i]), kMarkerRadius, 0, 2 * std::numbers::pi);
+  }
+}
+
 void set_series_style(cairo_t* cr, const Series& series, std::size_t index) {
-  set_colour(cr, kPalette[index % kPalette.size()]);
+  const Rgb& c = kPalette[index % kPalette.size()];
+  // Dots of a dense scatter overlap: translucent ones show where the samples crowd.
+  cairo_set_source_rgba(cr, c.r, c.g, c.b, series.markers ? kMarkerOpacity : 1.0);
   cairo_set_line_width(cr, kLineWidth);
   cairo_set_line_cap(cr, CAIRO_LINE_CAP_ROUND);
   cairo_set_line_join(cr, CAIRO_LINE_JOIN_ROUND);
@@ -284,9 +310,14 @@ void draw_legend(cairo_t* cr, const Panel& panel, const Axes& axes) {
   for (const std::size_t i : entries) {
     const Series& series = panel.series[i];
     set_series_style(cr, series, i);
-    cairo_move_to(cr, box_left + kPad, row_middle);
-    cairo_line_to(cr, box_left + kPad + kSample, row_middle);
-    cairo_stroke(cr);
+    if (series.markers) {
+      cairo_arc(cr, box_left + kPad + kSample / 2, row_middle, 2 * kMarkerRadius, 0, 2 * std::numbers::pi);
+      cairo_fill(cr);
+    } else {
+      cairo_move_to(cr, box_left + kPad, row_middle);
+      cairo_line_to(cr, box_left + kPad + kSample, row_middle);
+      cairo_stroke(cr);
+    }
     cairo_set_dash(cr, nullptr, 0, 0);
     set_colour(cr, kText);
     show_text(cr, series.label, box_left + kPad + kSample + kSampleGap, row_middle, 0, true);
@@ -312,9 +343,15 @@ void draw_panel(cairo_t* cr, const Panel& panel, const Axes& axes, const Ticks& 
   draw_bands(cr, panel, a);
   draw_grid(cr, a, x_ticks, y_ticks);
   for (std::size_t i = 0; i < panel.series.size(); ++i) {
-    set_series_style(cr, panel.series[i], i);
-    trace_series(cr, panel.series[i], a);
-    cairo_stroke(cr);
+    const Series& series = panel.series[i];
+    set_series_style(cr, series, i);
+    if (series.markers) {
+      trace_markers(cr, series, a);
+      cairo_fill(cr);
+    } else {
+      trace_series(cr, series, a);
+      cairo_stroke(cr);
+    }
   }
   cairo_set_dash(cr, nullptr, 0, 0);
   draw_legend(cr, panel, a);
@@ -384,6 +421,7 @@ void draw_figure(cairo_t* cr, const Figure& figure, double height) {
       }
     }
   }
+  for (const auto& tick : figure.x_ticks) x_extent.add(tick.first);
   // Only bands and no data: show the bands rather than an arbitrary [0, 1].
   if (x_extent.empty()) {
     for (const Panel& panel : figure.panels) {
@@ -402,7 +440,7 @@ void draw_figure(cairo_t* cr, const Figure& figure, double height) {
   axes.height = std::max(1.0, std::round(panel_height - kPanelTitleHeight - kPanelGap));
   // Time axes are tight: the run starts and ends at the frame.
   axes.x = axis_range(x_extent, 0);
-  const Ticks x_ticks = make_ticks(axes.x, axes.width / 90);
+  const Ticks x_ticks = figure.x_ticks.empty() ? make_ticks(axes.x, axes.width / 90) : given_ticks(figure.x_ticks);
 
   for (std::size_t p = 0; p < figure.panels.size(); ++p) {
     const double slot_top = kTitleHeight + panel_height * static_cast<double>(p);
@@ -471,4 +509,4 @@ void write_figure(const Figure& figure, const std::filesystem::path& stem) {
   check(cairo_surface_status(vector.get()), svg);
 }
 
-}  // namespace dyncc::sim
+}  // namespace dyncc::plot
