@@ -55,6 +55,13 @@ TEST(Sim2RealBench, WritesTruthApartAndDiagnosesEachLog) {
       }
       EXPECT_EQ(r["heldout_rms_before"].size(), 3U);
     }
+    // Where the log came from is part of the truth: the model along an open-loop trajectory, or
+    // one of the simulation's plants in closed loop (Kraft at 200 Hz and above).
+    std::ifstream truth_file(dir / "truth.json");
+    const nlohmann::json truth = nlohmann::json::parse(truth_file);
+    const std::string plant = truth["plant"];
+    EXPECT_TRUE(plant == "model" || plant == "dyncc" || plant == "mujoco") << plant;
+    EXPECT_EQ(plant != "model", truth["rate"].get<double>() >= 200) << plant;
     // The log itself says nothing about the truth: its header is only t, q*, tau*.
     std::ifstream log(dir / "log.csv");
     std::string header;

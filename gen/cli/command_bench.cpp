@@ -19,6 +19,9 @@
 
 #include "cli/commands.hpp"
 #include "cli/robot_input.hpp"
+#include "diagnose/crossval.hpp"
+#include "diagnose/dataset.hpp"
+#include "diagnose/joint_log.hpp"
 #include "diagnose/synthetic_log.hpp"
 
 namespace dyncc::cli {
@@ -28,6 +31,8 @@ namespace fs = std::filesystem;
 
 struct Case {
   std::string arm;
+  std::string plant = "model";         // "model" (open-loop inverse dynamics), or dyncc-sim's "dyncc" / "mujoco"
+  std::string trajectory = "fourier";  // or "teleop" (closed loop only)
   double rate = 0, fraction = 0;
   std::vector<diagnose::Injection> effects;
   std::vector<double> effect_rms;  // per injected effect: its torque RMS on its joint (or the arm's largest)
@@ -48,19 +53,22 @@ std::pair<std::string, double> measured_parameter(const diagnose::Injection& e) 
 }
 
 // Unit sizes, scaled afterwards to the wanted share of the torque RMS.
-double unit_size(const std::string& effect) {
-  if (effect == "torque_gain") return 0.1;  // as gain - 1
+double unit_size(const std::string& effect, bool closed) {
+  if (effect == "contact") return closed ? 0.01 : 1.0;  // m of table above the lowest hook point; N of peak force
+  if (effect == "torque_gain") return 0.1;              // as gain - 1
   if (effect == "sensor_delay") return 0.01;
   if (effect == "position_offset") return 0.02;
   if (effect == "payload") return 0.2;
   if (effect == "rotor_inertia") return 0.01;
-  if (effect == "contact") return 1.0;  // N
   return 0.1;
 }
 
 // Sizes a real arm could have; a draw outside is redrawn (a 20 % torque change by a 0.5 s delay
 // is not a sensor delay).
-bool plausible_size(const diagnose::Injection& e) {
+bool plausible_size(const diagnose::Injection& e, bool closed) {
+  if (closed && e.effect == "contact") return e.size <= 0.2;
+  if (closed && e.effect == "payload") return e.size <= 3.0;
+  if (closed && e.effect == "rotor_inertia") return e.size <= 1.0;
   if (e.effect == "torque_gain") return e.size > 0.7 && e.size < 1.4;
   if (e.effect == "sensor_delay") return e.size <= 0.05;
   if (e.effect == "position_offset") return e.size <= 0.2;
@@ -77,6 +85,56 @@ std::string self_path() {
 }
 
 std::string shell_quoted(const fs::path& p) { return fmt::format("'{}'", p.string()); }
+
+// Closed-loop logs: the Kraft arm on one of the simulation's plants (dyncc-sim excite, run
+// through `dyncc excite`), the hidden effects in the plant, described in its effects file.
+nlohmann::json effects_file(const std::vector<diagnose::Injection>& effects) {
+  nlohmann::json list = nlohmann::json::array();
+  for (const auto& e : effects) {
+    nlohmann::json entry = {{"effect", e.effect}};
+    if (diagnose::acts_on_one_joint(e.effect)) {
+      static const std::map<std::string, std::string> names = {
+          {"coulomb_friction", "fc"}, {"viscous_friction", "fv"}, {"stribeck_friction", "fs"},
+          {"rotor_inertia", "ia"},    {"torque_gain", "gain"},    {"position_offset", "offset"}};
+      entry["joints"] = {e.joint + 1};
+      entry["parameters"] = {{names.at(e.effect), {e.size}}};
+    } else {
+      const std::string name = e.effect == "payload" ? "mass" : (e.effect == "contact" ? "depth" : "delay");
+      entry["parameters"] = {{name, e.size}};
+    }
+    list.push_back(entry);
+  }
+  return {{"effects", list}};
+}
+
+// What one closed-loop run needs.
+struct Run {
+  std::string plant, trajectory;
+  double rate = 0;
+  unsigned seed = 0;
+};
+
+bool run_excite(const Run& k, const std::vector<diagnose::Injection>& effects, const fs::path& log) {
+  const fs::path file = fs::path(log).replace_extension(".effects.json");
+  std::ofstream(file) << effects_file(effects).dump(2) << "\n";
+  const std::string command = fmt::format(
+      "{} excite --plant {} --trajectory {} --rate {:.0f} --duration 60 --seed {} --effects {} --out {} "
+      "> {} 2>&1",
+      shell_quoted(self_path()), k.plant, k.trajectory, k.rate, k.seed, shell_quoted(file), shell_quoted(log),
+      shell_quoted(fs::path(log).replace_extension(".excite.txt")));
+  return std::system(command.c_str()) == 0;
+}
+
+// What the diagnosis would see of a closed-loop log: its residual against the nominal model, and
+// the torque RMS per joint. An effect's size is the RMS of the change it makes to that residual.
+struct Seen {
+  Eigen::VectorXd residual, torque_rms;
+};
+Seen seen(const pipeline::Derivation& d, const fs::path& log) {
+  const auto n = static_cast<Eigen::Index>(d.robot.coordinates.size());
+  const diagnose::Dataset data = diagnose::build_dataset({diagnose::read_joint_log(log.string(), n)}, d);
+  return {data.residual, (data.analysis_tau.array().square().colwise().mean()).sqrt().transpose()};
+}
 
 }  // namespace
 
@@ -106,6 +164,7 @@ int run_sim2real_bench(const BenchOptions& o) {
   };
   std::map<std::string, Score> by_size;  // "none", "5%", "10%", "20%"
   std::map<std::string, Score> by_effect;
+  std::map<std::string, Score> by_source;  // "open loop (model)", "dyncc fourier", "mujoco teleop", ...
   std::string rows;
   for (int c = 0; c < o.cases; ++c) {
     Case k;
@@ -119,6 +178,37 @@ int run_sim2real_bench(const BenchOptions& o) {
     so.rate = k.rate;
     so.seed = o.seed * 1000U + static_cast<unsigned>(c);
     so.duration = 40;
+    const bool closed = o.closed_loop && k.arm == "kraft" && k.rate >= 200;
+    if (closed) {  // alternate the plants, and the trajectories every second time
+      const int turn = c / static_cast<int>(arms.size());
+      k.plant = turn % 2 == 0 ? "dyncc" : "mujoco";
+      k.trajectory = (turn / 2) % 2 == 0 ? "fourier" : "teleop";
+    }
+    const fs::path dir = fs::path(o.out) / fmt::format("case{:03d}", c);
+    fs::create_directories(dir);
+    const Run run{k.plant, k.trajectory, k.rate, so.seed};
+    Seen clean;
+    if (closed) {
+      if (!run_excite(run, {}, dir / "clean.csv")) {
+        fmt::print(stderr, "case {}: dyncc excite failed; see {}\n", c, (dir / "clean.excite.txt").string());
+        return kCheckFailed;
+      }
+      clean = seen(d, dir / "clean.csv");
+    }
+    // The RMS per joint of the torque change an effect makes (as the diagnosis sees it), and of
+    // the clean torque: from the model along the open-loop trajectory, or from a closed-loop run
+    // with the effect alone against the clean run.
+    auto measure = [&](const diagnose::Injection& inj, diagnose::EffectSize& size) {
+      if (!closed) {
+        size = diagnose::effect_size(d, {inj}, so);
+        return true;
+      }
+      if (!run_excite(run, {inj}, dir / "probe.csv")) return false;
+      const Seen probe = seen(d, dir / "probe.csv");
+      size.clean_rms = clean.torque_rms;
+      size.effect_rms = diagnose::joint_rms(probe.residual - clean.residual, n);
+      return true;
+    };
     std::vector<std::string> pool = effects;
     for (int e = 0; e < count; ++e) {
       // Draw until the effect is observable on the trajectory and its size physically plausible.
@@ -127,10 +217,11 @@ int run_sim2real_bench(const BenchOptions& o) {
         diagnose::Injection inj;
         inj.effect = pool[pick];
         inj.joint = static_cast<int>(random() % static_cast<unsigned>(n));
-        const double unit = unit_size(inj.effect);
+        const double unit = unit_size(inj.effect, closed);
         inj.size = inj.effect == "torque_gain" ? 1.0 + unit : unit;
         // Scale so the effect is `fraction` of the torque RMS where it acts (a second one half as big).
-        const diagnose::EffectSize size = diagnose::effect_size(d, {inj}, so);
+        diagnose::EffectSize size;
+        if (!measure(inj, size)) continue;  // a probe the plant refused
         const double share = e == 0 ? k.fraction : 0.5 * k.fraction;
         auto j = static_cast<Eigen::Index>(inj.joint);
         if (!diagnose::acts_on_one_joint(inj.effect)) {
@@ -141,19 +232,23 @@ int run_sim2real_bench(const BenchOptions& o) {
         if (ratio < 1e-3) continue;  // e.g. an offset of the vertical yaw axis: no torque at all
         const double scale = share / ratio;
         inj.size = inj.effect == "torque_gain" ? 1.0 + unit * scale : unit * scale;
-        if (!plausible_size(inj)) continue;
+        if (!plausible_size(inj, closed)) continue;
         k.effects.push_back(inj);
         pool.erase(pool.begin() + static_cast<std::ptrdiff_t>(pick));
         break;
       }
     }
-    const fs::path dir = fs::path(o.out) / fmt::format("case{:03d}", c);
-    fs::create_directories(dir);
-    diagnose::write_synthetic_log(d, k.effects, so, dir / "log.csv");
-    nlohmann::json truth = {{"arm", k.arm},
-                            {"rate", k.rate},
-                            {"fraction", k.fraction},
-                            {"effects", nlohmann::json::array()}};
+    if (closed) {
+      fs::remove(dir / "probe.csv");
+      if (!run_excite(run, k.effects, dir / "log.csv")) {
+        fmt::print(stderr, "case {}: dyncc excite failed; see {}\n", c, (dir / "log.excite.txt").string());
+        return kCheckFailed;
+      }
+    } else {
+      diagnose::write_synthetic_log(d, k.effects, so, dir / "log.csv");
+    }
+    nlohmann::json truth = {{"arm", k.arm},   {"plant", k.plant},       {"trajectory", k.trajectory},
+                            {"rate", k.rate}, {"fraction", k.fraction}, {"effects", nlohmann::json::array()}};
     for (const auto& e : k.effects)
       truth["effects"].push_back({{"effect", e.effect}, {"joint", e.joint + 1}, {"size", e.size}});
     std::ofstream(dir / "truth.json") << truth.dump(2) << "\n";
@@ -177,23 +272,20 @@ int run_sim2real_bench(const BenchOptions& o) {
 
     const std::string bin = k.effects.empty() ? std::string("none") : fmt::format("{:.0f} %", 100 * k.fraction);
     const std::string truth_name = k.effects.empty() ? std::string("none") : k.effects.front().effect;
-    Score& s = by_size[bin];
-    Score& se = by_effect[truth_name];
-    for (Score* x : {&s, &se}) ++x->cases;
+    const std::string source = k.plant == "model" ? std::string("open loop (model)") : k.plant + " " + k.trajectory;
+    const std::vector<Score*> scores = {&by_size[bin], &by_effect[truth_name], &by_source[source]};
+    auto count_in = [&](int Score::*field, bool yes) {
+      for (Score* x : scores) x->*field += yes ? 1 : 0;
+    };
+    count_in(&Score::cases, true);
     const bool right = first == truth_name;
-    if (right) {
-      ++s.top1;
-      ++se.top1;
-    }
+    count_in(&Score::top1, right);
     std::string detail;
     if (!k.effects.empty()) {
       const auto& main = k.effects.front();
       if (diagnose::acts_on_one_joint(main.effect)) {
-        ++s.locatable;
-        ++se.locatable;
-        const bool located = right && joints == std::vector<int>{main.joint + 1};
-        s.located += located ? 1 : 0;
-        se.located += located ? 1 : 0;
+        count_in(&Score::locatable, true);
+        count_in(&Score::located, right && joints == std::vector<int>{main.joint + 1});
       }
       if (right && !result["selected"].empty()) {
         const auto& sel = result["selected"][0];
@@ -206,20 +298,16 @@ int run_sim2real_bench(const BenchOptions& o) {
                           : main.effect == "payload"     ? std::abs(fitted - target) <= 0.03 * std::abs(target)
                           : main.effect == "torque_gain" ? std::abs(fitted - target) <= 0.1 * std::abs(target - 1.0)
                                                          : std::abs(fitted - target) <= 0.1 * std::abs(target);
-          ++s.parameters;
-          ++se.parameters;
-          s.parameters_ok += ok ? 1 : 0;
-          se.parameters_ok += ok ? 1 : 0;
+          count_in(&Score::parameters, true);
+          count_in(&Score::parameters_ok, ok);
           detail = fmt::format("{} = {:.4g} (true {:.4g})", name, fitted, target);
         }
         // Gap closure on the effect's joint: the share of the held-out gap that is gone.
         const auto j = static_cast<std::size_t>(main.joint);
         const double before = result["gap"]["heldout_rms"][j], after = result["gap"]["heldout_rms_after_selected"][j];
         const double closure = before > 0 ? 1.0 - (after * after) / (before * before) : 0.0;
-        ++s.closures;
-        ++se.closures;
-        s.closure_ok += closure >= 0.8 ? 1 : 0;
-        se.closure_ok += closure >= 0.8 ? 1 : 0;
+        count_in(&Score::closures, true);
+        count_in(&Score::closure_ok, closure >= 0.8);
         detail = fmt::format("{}, closure {:.0f} %", detail, 100 * closure);
       }
     }
@@ -228,10 +316,11 @@ int run_sim2real_bench(const BenchOptions& o) {
       injected =
           fmt::format("{}{}{}@{} {:.3g}", injected, injected.empty() ? "" : " + ", e.effect, e.joint + 1, e.size);
     }
-    rows += fmt::format("| {} | {} | {:.0f} | {} | {} | {} | {} | {} |\n", c, k.arm, k.rate,
+    rows += fmt::format("| {} | {} | {} | {:.0f} | {} | {} | {} | {} | {} |\n", c, k.arm, source, k.rate,
                         injected.empty() ? "none" : injected, bin, verdict, fmt::join(joints, ","), detail);
-    fmt::print("case {:3d} {:8} {:5.0f} Hz  {:<48} -> {} [{}] {}\n", c, k.arm, k.rate,
+    fmt::print("case {:3d} {:8} {:17} {:5.0f} Hz  {:<48} -> {} [{}] {}\n", c, k.arm, source, k.rate,
                injected.empty() ? "none" : injected, verdict, fmt::join(joints, ","), right ? "" : "(wrong)");
+    std::fflush(stdout);
   }
   auto pct = [](int a, int b) {
     return b > 0 ? fmt::format("{:.0f} % ({}/{})", 100.0 * a / b, a, b) : std::string("-");
@@ -245,18 +334,60 @@ int run_sim2real_bench(const BenchOptions& o) {
                     bin == "none" ? fmt::format("{} said none", pct(s.top1, s.cases)) : pct(s.top1, s.cases),
                     pct(s.located, s.locatable), pct(s.parameters_ok, s.parameters), pct(s.closure_ok, s.closures));
   }
-  std::string effect_table =
-      "| injected (largest) effect | cases | top-1 | joint located | parameters | closure "
-      "|\n|---|---|---|---|---|---|\n";
-  for (const auto& [name, s] : by_effect) {
-    effect_table +=
-        fmt::format("| {} | {} | {} | {} | {} | {} |\n", name, s.cases, pct(s.top1, s.cases),
-                    pct(s.located, s.locatable), pct(s.parameters_ok, s.parameters), pct(s.closure_ok, s.closures));
+  auto score_table = [&](const char* title, const std::map<std::string, Score>& scores) {
+    std::string out =
+        fmt::format("| {} | cases | top-1 | joint located | parameters | closure |\n|---|---|---|---|---|---|\n",
+                    title);
+    for (const auto& [name, s] : scores) {
+      out +=
+          fmt::format("| {} | {} | {} | {} | {} | {} |\n", name, s.cases, pct(s.top1, s.cases),
+                      pct(s.located, s.locatable), pct(s.parameters_ok, s.parameters), pct(s.closure_ok, s.closures));
+    }
+    return out;
+  };
+  // The goals over all cases.
+  Score large, small, all;
+  for (const auto& [bin, s] : by_size) {
+    if (bin == "none") continue;
+    Score& into = bin == "5 %" ? small : large;
+    into.cases += s.cases;
+    into.top1 += s.top1;
+    for (Score* x : {&all}) {
+      x->located += s.located;
+      x->locatable += s.locatable;
+      x->parameters += s.parameters;
+      x->parameters_ok += s.parameters_ok;
+      x->closures += s.closures;
+      x->closure_ok += s.closure_ok;
+    }
   }
+  const Score none = by_size.count("none") != 0 ? by_size.at("none") : Score{};
+  auto verdict_of = [](int a, int b, double goal, bool at_most) {
+    if (b == 0) return "-";
+    const double value = static_cast<double>(a) / b;
+    return (at_most ? value <= goal : value >= goal) ? "met" : "NOT met";
+  };
+  const std::string goals = fmt::format(
+      "| goal | measured | |\n|---|---|---|\n"
+      "| top-1 effect >= 90 % at sizes >= 10 % | {} | {} |\n"
+      "| top-1 effect >= 70 % at 5 % | {} | {} |\n"
+      "| joint localisation >= 95 % | {} | {} |\n"
+      "| false alarms on effect-free logs <= 5 % | {} | {} |\n"
+      "| held-out gap closure >= 80 % of the injected effect's (correctly named) | {} | {} |\n"
+      "| parameters within 10 % (payload 3 %, delay one sample) | {} | {} |\n",
+      pct(large.top1, large.cases), verdict_of(large.top1, large.cases, 0.9, false), pct(small.top1, small.cases),
+      verdict_of(small.top1, small.cases, 0.7, false), pct(all.located, all.locatable),
+      verdict_of(all.located, all.locatable, 0.95, false), pct(none.cases - none.top1, none.cases),
+      verdict_of(none.cases - none.top1, none.cases, 0.05, true), pct(all.closure_ok, all.closures),
+      verdict_of(all.closure_ok, all.closures, 0.8, false), pct(all.parameters_ok, all.parameters),
+      verdict_of(all.parameters_ok, all.parameters, 1.0 - 1e-9, false));
+  const std::string effect_table = score_table("injected (largest) effect", by_effect);
+  const std::string source_table = score_table("log from", by_source);
   const std::string summary = fmt::format(
-      "{}\n{}\n| case | arm | Hz | injected | size | verdict | joints | fit |\n|---|---|---|---|---|---|---|---|\n{}",
-      table, effect_table, rows);
-  fmt::print("\n{}\n{}", table, effect_table);
+      "{}\n{}\n{}\n{}\n| case | arm | log from | Hz | injected | size | verdict | joints | fit |\n"
+      "|---|---|---|---|---|---|---|---|---|\n{}",
+      goals, table, effect_table, source_table, rows);
+  fmt::print("\n{}\n{}\n{}\n{}", goals, table, effect_table, source_table);
   std::ofstream(fs::path(o.out) / "summary.md") << summary;
   return kSuccess;
 }

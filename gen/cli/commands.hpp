@@ -74,6 +74,7 @@ struct BenchOptions {
   std::string out = "sim2real-bench";
   std::string robots = "robots";
   std::vector<std::string> arms{"kraft", "puma560", "panda"};
+  bool closed_loop = true;  // Kraft logs at 200 Hz and above from the closed-loop simulation (dyncc-sim excite)
 };
 int run_sim2real_bench(const BenchOptions& o);
 

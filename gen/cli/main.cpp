@@ -114,6 +114,8 @@ void add_output_commands(CLI::App& app, int& exit_code) {
   bench_cmd->add_option("--out", bench->out, "Folder for the logs, truths, diagnoses and summary.md");
   bench_cmd->add_option("--robots", bench->robots, "Folder with the descriptions (default robots)");
   bench_cmd->add_option("--arms", bench->arms, "Descriptions to use (default kraft puma560 panda)");
+  bench_cmd->add_option("--closed-loop", bench->closed_loop,
+                        "Kraft logs at 200 Hz and above from the closed-loop simulation on both plants (default true)");
   bench_cmd->callback([&exit_code, bench] { exit_code = run_sim2real_bench(*bench); });
 }
 
