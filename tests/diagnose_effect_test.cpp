@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <map>
 #include <random>
 
 #include "diagnose/contact.hpp"
@@ -69,6 +70,40 @@ TEST_P(InjectedEffect, IsNamedLocatedAndSized) {
     }
   }
   EXPECT_TRUE(found) << c.parameter;
+}
+
+// Two effects of different kinds on different joints: each is named on its own joint only (the
+// Coulomb columns of joint 3 would half absorb a viscous friction of joint 3 if they were kept),
+// and both sizes are read from the joint fit of the two.
+TEST(InjectedEffects, TwoEffectsAreEachPlacedOnTheirOwnJoint) {
+  Injection coulomb, viscous;
+  coulomb.effect = "coulomb_friction";
+  coulomb.joint = 0;
+  coulomb.size = 0.1;
+  viscous.effect = "viscous_friction";
+  viscous.joint = 2;
+  viscous.size = 0.4;
+  const auto path = std::filesystem::path(::testing::TempDir()) / "dyncc_diagnose_two_effects.csv";
+  diagnose::write_synthetic_log(kraft(), {coulomb, viscous}, diagnose::SyntheticOptions{}, path);
+  const diagnose::Dataset data = diagnose::build_dataset({diagnose::read_joint_log(path.string(), 3)}, kraft());
+  const diagnose::Diagnosis d = diagnose::diagnose(data, kraft());
+  SCOPED_TRACE(diagnose::diagnosis_text(data, d));
+  ASSERT_GE(d.selected.size(), 2U);
+  std::map<std::string, const diagnose::RankedEffect*> by_name;
+  for (const auto& r : d.selected) by_name[r.effect] = &r;
+  ASSERT_TRUE(by_name.count("coulomb_friction") && by_name.count("viscous_friction"));
+  EXPECT_EQ(by_name["coulomb_friction"]->joints, std::vector<int>{1});
+  EXPECT_EQ(by_name["viscous_friction"]->joints, std::vector<int>{3});
+  auto value = [](const diagnose::RankedEffect& r, const std::string& name) {
+    for (const auto& p : r.parameters) {
+      if (p.name == name) return p.value;
+    }
+    return std::nan("");
+  };
+  EXPECT_NEAR(value(*by_name["coulomb_friction"], "fc1"), 0.1, 0.01);
+  EXPECT_NEAR(value(*by_name["viscous_friction"], "fv3"), 0.4, 0.04);
+  // The refit is what the report draws: the accepted effects are exactly the selected ones.
+  ASSERT_EQ(d.accepted_effects.size(), d.selected.size());
 }
 
 // The contact effect's geometry, against finite differences: minus the torque of a unit upward

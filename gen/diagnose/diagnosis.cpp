@@ -208,6 +208,8 @@ bool plausible(const RankedEffect& r, const pipeline::Derivation& derivation) {
     const double total = p.value + described(p.name, "fc", params.coulomb_of) +
                          described(p.name, "fv", params.viscous_of) + described(p.name, "ia", params.rotor_of);
     if (non_negative && total < -2.0 * p.error) return false;
+    // A drive whose torque is off by more than a factor of two is a wrong description, not a gain.
+    if (p.name.rfind("gain", 0) == 0 && (p.value < 0.5 || p.value > 2.0)) return false;
   }
   return true;
 }
