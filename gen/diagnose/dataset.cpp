@@ -159,7 +159,7 @@ Dataset build_dataset(const std::vector<JointLog>& logs, const pipeline::Derivat
       const dyn::Evaluation e = model.evaluate(state, nominal);
       for (Eigen::Index j = 0; j < n; ++j) {
         const double v = c.qd(s, j), sign = v > 0 ? 1.0 : (v < 0 ? -1.0 : 0.0);
-        d.model_tau(row, j) = e.tau[j] + coulomb[j] * (std::tanh(v / kSignVelocity) - sign);
+        d.model_tau(row, j) = e.tau[j] + coulomb[j] * (smooth_sign(v) - sign);
       }
       d.standard.middleRows(row * n, n) = e.Y;
       for (std::size_t b = 0; b < rigid_columns.size(); ++b) {

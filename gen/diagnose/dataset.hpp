@@ -5,6 +5,7 @@
 #pragma once
 
 #include <Eigen/Dense>
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -17,6 +18,13 @@ namespace dyncc::diagnose {
 /// Velocity scale (rad/s) over which Coulomb friction turns over, in the nominal model and in the
 /// friction effects alike: the sign of a filtered velocity estimate near zero is noise.
 inline constexpr double kSignVelocity = 0.002;
+/// The sign of a velocity as the friction model sees it, smoothed over kSignVelocity.
+inline double smooth_sign(double velocity) { return std::tanh(velocity / kSignVelocity); }
+/// How a static friction excess fades with speed (Stribeck), over the velocity scale `scale`.
+inline double stribeck_fade(double velocity, double scale) {
+  const double v = velocity / scale;
+  return std::exp(-v * v);
+}
 
 struct ConditioningOptions {
   double cutoff = 0;  // Hz; 0 = automatic, min(rate / 8, 4 Hz)

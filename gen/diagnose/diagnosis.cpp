@@ -238,9 +238,7 @@ Eigen::VectorXd sign_floor(const Dataset& d, const pipeline::Derivation& derivat
     Eigen::MatrixXd change = Eigen::MatrixXd::Zero(samples * n, 1);
     for (Eigen::Index s = 0; s < samples; ++s) {
       const double v = d.qd(s, j);
-      change(s * n + j, 0) =
-          0.5 * nominal[index] *
-          (std::tanh((v + velocity_error) / kSignVelocity) - std::tanh((v - velocity_error) / kSignVelocity));
+      change(s * n + j, 0) = 0.5 * nominal[index] * (smooth_sign(v + velocity_error) - smooth_sign(v - velocity_error));
     }
     floor[j] = joint_rms(d.condition(change).col(0), n)[j];
   }

@@ -133,17 +133,16 @@ std::vector<Effect> candidate_effects(const Dataset& d, const pipeline::Derivati
   const Eigen::Index rows = d.samples() * d.n;
 
   out.push_back(per_joint(d, "coulomb_friction", "fc", Reading::as_is,
-                          [&](Eigen::Index s, Eigen::Index j) { return std::tanh(d.qd(s, j) / kSignVelocity); }));
+                          [&](Eigen::Index s, Eigen::Index j) { return smooth_sign(d.qd(s, j)); }));
   out.push_back(per_joint(d, "viscous_friction", "fv", Reading::as_is,
                           [&](Eigen::Index s, Eigen::Index j) { return d.qd(s, j); }));
   // Stribeck: Coulomb plus a static excess that fades with speed; with its Coulomb column it is a
   // superset of coulomb_friction, so it wins only when the fading is in the data.
   for (const double vs : kStribeckScales) {
     Effect e = per_joint(d, "stribeck_friction", "fc", Reading::as_is,
-                         [&](Eigen::Index s, Eigen::Index j) { return std::tanh(d.qd(s, j) / kSignVelocity); });
+                         [&](Eigen::Index s, Eigen::Index j) { return smooth_sign(d.qd(s, j)); });
     const Effect excess = per_joint(d, "stribeck_friction", "fs", Reading::as_is, [&](Eigen::Index s, Eigen::Index j) {
-      const double v = d.qd(s, j) / vs;
-      return std::exp(-v * v) * std::tanh(d.qd(s, j) / kSignVelocity);
+      return stribeck_fade(d.qd(s, j), vs) * smooth_sign(d.qd(s, j));
     });
     Eigen::MatrixXd both(rows, 2 * d.n);
     both << e.columns, excess.columns;

@@ -1,7 +1,5 @@
 #include "diagnose/velocity_curve.hpp"
 
-#include <cmath>
-
 namespace dyncc::diagnose {
 
 bool has_velocity_curve(const std::string& effect) {
@@ -10,7 +8,7 @@ bool has_velocity_curve(const std::string& effect) {
 
 double velocity_curve(const EffectFit& fit, Eigen::Index joint, double velocity) {
   if (!has_velocity_curve(fit.effect)) return 0;
-  const double sign = std::tanh(velocity / kSignVelocity);
+  const double sign = smooth_sign(velocity);
   double torque = 0;
   for (std::size_t k = 0; k < fit.parameters.size(); ++k) {
     if (fit.joint_of[k] != joint) continue;
@@ -19,10 +17,7 @@ double velocity_curve(const EffectFit& fit, Eigen::Index joint, double velocity)
     const double value = fit.values[static_cast<Eigen::Index>(k)];
     if (kind == "fc") torque += value * sign;
     if (kind == "fv") torque += value * velocity;
-    if (kind == "fs" && fit.profile > 0) {
-      const double v = velocity / fit.profile;
-      torque += value * std::exp(-v * v) * sign;
-    }
+    if (kind == "fs" && fit.profile > 0) torque += value * stribeck_fade(velocity, fit.profile) * sign;
   }
   return torque;
 }
