@@ -136,6 +136,79 @@ Seen seen(const pipeline::Derivation& d, const fs::path& log) {
   return {data.residual, (data.analysis_tau.array().square().colwise().mean()).sqrt().transpose()};
 }
 
+struct Score {
+  int cases = 0, top1 = 0, located = 0, locatable = 0, parameters_ok = 0, parameters = 0, closure_ok = 0, closures = 0;
+};
+
+std::string pct(int a, int b) {
+  return b > 0 ? fmt::format("{:.0f} % ({}/{})", 100.0 * a / b, a, b) : std::string("-");
+}
+
+// The goals of the issue over all cases, then the scores by effect size, by injected effect and by
+// the log's source, as Markdown tables.
+std::string score_tables(const std::map<std::string, Score>& by_size, const std::map<std::string, Score>& by_effect,
+                         const std::map<std::string, Score>& by_source) {
+  std::string table =
+      "| effect size | cases | top-1 effect | joint located | parameters within goal | gap closure >= 80 % "
+      "|\n|---|---|---|---|---|---|\n";
+  for (const auto& [bin, s] : by_size) {
+    table +=
+        fmt::format("| {} | {} | {} | {} | {} | {} |\n", bin, s.cases,
+                    bin == "none" ? fmt::format("{} said none", pct(s.top1, s.cases)) : pct(s.top1, s.cases),
+                    pct(s.located, s.locatable), pct(s.parameters_ok, s.parameters), pct(s.closure_ok, s.closures));
+  }
+  auto score_table = [&](const char* title, const std::map<std::string, Score>& scores) {
+    std::string out =
+        fmt::format("| {} | cases | top-1 | joint located | parameters | closure |\n|---|---|---|---|---|---|\n",
+                    title);
+    for (const auto& [name, s] : scores) {
+      out +=
+          fmt::format("| {} | {} | {} | {} | {} | {} |\n", name, s.cases, pct(s.top1, s.cases),
+                      pct(s.located, s.locatable), pct(s.parameters_ok, s.parameters), pct(s.closure_ok, s.closures));
+    }
+    return out;
+  };
+  // The issue's goals over all cases.
+  Score large, small, all;
+  for (const auto& [bin, s] : by_size) {
+    if (bin == "none") continue;
+    Score& into = bin == "5 %" ? small : large;
+    into.cases += s.cases;
+    into.top1 += s.top1;
+    for (Score* x : {&all}) {
+      x->located += s.located;
+      x->locatable += s.locatable;
+      x->parameters += s.parameters;
+      x->parameters_ok += s.parameters_ok;
+      x->closures += s.closures;
+      x->closure_ok += s.closure_ok;
+    }
+  }
+  const Score none = by_size.contains("none") ? by_size.at("none") : Score{};
+  auto verdict_of = [](int a, int b, double goal, bool at_most) {
+    if (b == 0) return "-";
+    const double value = static_cast<double>(a) / b;
+    return (at_most ? value <= goal : value >= goal) ? "met" : "NOT met";
+  };
+  const std::string goals = fmt::format(
+      "| goal | measured | |\n|---|---|---|\n"
+      "| top-1 effect >= 90 % at sizes >= 10 % | {} | {} |\n"
+      "| top-1 effect >= 70 % at 5 % | {} | {} |\n"
+      "| joint localisation >= 95 % | {} | {} |\n"
+      "| false alarms on effect-free logs <= 5 % | {} | {} |\n"
+      "| held-out gap closure >= 80 % of the injected effect's (correctly named) | {} | {} |\n"
+      "| parameters within 10 % (payload 3 %, delay one sample) | {} | {} |\n",
+      pct(large.top1, large.cases), verdict_of(large.top1, large.cases, 0.9, false), pct(small.top1, small.cases),
+      verdict_of(small.top1, small.cases, 0.7, false), pct(all.located, all.locatable),
+      verdict_of(all.located, all.locatable, 0.95, false), pct(none.cases - none.top1, none.cases),
+      verdict_of(none.cases - none.top1, none.cases, 0.05, true), pct(all.closure_ok, all.closures),
+      verdict_of(all.closure_ok, all.closures, 0.8, false), pct(all.parameters_ok, all.parameters),
+      verdict_of(all.parameters_ok, all.parameters, 1.0 - 1e-9, false));
+  const std::string effect_table = score_table("injected (largest) effect", by_effect);
+  const std::string source_table = score_table("log from", by_source);
+  return fmt::format("{}\n{}\n{}\n{}", goals, table, effect_table, source_table);
+}
+
 }  // namespace
 
 int run_sim2real_bench(const BenchOptions& o) {
@@ -158,10 +231,6 @@ int run_sim2real_bench(const BenchOptions& o) {
   const double fractions[] = {0.05, 0.1, 0.2};
   const std::vector<std::string> effects = diagnose::injectable_effects();
 
-  struct Score {
-    int cases = 0, top1 = 0, located = 0, locatable = 0, parameters_ok = 0, parameters = 0, closure_ok = 0,
-        closures = 0;
-  };
   std::map<std::string, Score> by_size;  // "none", "5%", "10%", "20%"
   std::map<std::string, Score> by_effect;
   std::map<std::string, Score> by_source;  // "open loop (model)", "dyncc fourier", "mujoco teleop", ...
@@ -322,72 +391,12 @@ int run_sim2real_bench(const BenchOptions& o) {
                injected.empty() ? "none" : injected, verdict, fmt::join(joints, ","), right ? "" : "(wrong)");
     std::fflush(stdout);
   }
-  auto pct = [](int a, int b) {
-    return b > 0 ? fmt::format("{:.0f} % ({}/{})", 100.0 * a / b, a, b) : std::string("-");
-  };
-  std::string table =
-      "| effect size | cases | top-1 effect | joint located | parameters within goal | gap closure >= 80 % "
-      "|\n|---|---|---|---|---|---|\n";
-  for (const auto& [bin, s] : by_size) {
-    table +=
-        fmt::format("| {} | {} | {} | {} | {} | {} |\n", bin, s.cases,
-                    bin == "none" ? fmt::format("{} said none", pct(s.top1, s.cases)) : pct(s.top1, s.cases),
-                    pct(s.located, s.locatable), pct(s.parameters_ok, s.parameters), pct(s.closure_ok, s.closures));
-  }
-  auto score_table = [&](const char* title, const std::map<std::string, Score>& scores) {
-    std::string out =
-        fmt::format("| {} | cases | top-1 | joint located | parameters | closure |\n|---|---|---|---|---|---|\n",
-                    title);
-    for (const auto& [name, s] : scores) {
-      out +=
-          fmt::format("| {} | {} | {} | {} | {} | {} |\n", name, s.cases, pct(s.top1, s.cases),
-                      pct(s.located, s.locatable), pct(s.parameters_ok, s.parameters), pct(s.closure_ok, s.closures));
-    }
-    return out;
-  };
-  // The issue's goals over all cases.
-  Score large, small, all;
-  for (const auto& [bin, s] : by_size) {
-    if (bin == "none") continue;
-    Score& into = bin == "5 %" ? small : large;
-    into.cases += s.cases;
-    into.top1 += s.top1;
-    for (Score* x : {&all}) {
-      x->located += s.located;
-      x->locatable += s.locatable;
-      x->parameters += s.parameters;
-      x->parameters_ok += s.parameters_ok;
-      x->closures += s.closures;
-      x->closure_ok += s.closure_ok;
-    }
-  }
-  const Score none = by_size.count("none") != 0 ? by_size.at("none") : Score{};
-  auto verdict_of = [](int a, int b, double goal, bool at_most) {
-    if (b == 0) return "-";
-    const double value = static_cast<double>(a) / b;
-    return (at_most ? value <= goal : value >= goal) ? "met" : "NOT met";
-  };
-  const std::string goals = fmt::format(
-      "| goal | measured | |\n|---|---|---|\n"
-      "| top-1 effect >= 90 % at sizes >= 10 % | {} | {} |\n"
-      "| top-1 effect >= 70 % at 5 % | {} | {} |\n"
-      "| joint localisation >= 95 % | {} | {} |\n"
-      "| false alarms on effect-free logs <= 5 % | {} | {} |\n"
-      "| held-out gap closure >= 80 % of the injected effect's (correctly named) | {} | {} |\n"
-      "| parameters within 10 % (payload 3 %, delay one sample) | {} | {} |\n",
-      pct(large.top1, large.cases), verdict_of(large.top1, large.cases, 0.9, false), pct(small.top1, small.cases),
-      verdict_of(small.top1, small.cases, 0.7, false), pct(all.located, all.locatable),
-      verdict_of(all.located, all.locatable, 0.95, false), pct(none.cases - none.top1, none.cases),
-      verdict_of(none.cases - none.top1, none.cases, 0.05, true), pct(all.closure_ok, all.closures),
-      verdict_of(all.closure_ok, all.closures, 0.8, false), pct(all.parameters_ok, all.parameters),
-      verdict_of(all.parameters_ok, all.parameters, 1.0 - 1e-9, false));
-  const std::string effect_table = score_table("injected (largest) effect", by_effect);
-  const std::string source_table = score_table("log from", by_source);
+  const std::string tables = score_tables(by_size, by_effect, by_source);
   const std::string summary = fmt::format(
-      "{}\n{}\n{}\n{}\n| case | arm | log from | Hz | injected | size | verdict | joints | fit |\n"
+      "{}\n| case | arm | log from | Hz | injected | size | verdict | joints | fit |\n"
       "|---|---|---|---|---|---|---|---|---|\n{}",
-      goals, table, effect_table, source_table, rows);
-  fmt::print("\n{}\n{}\n{}\n{}", goals, table, effect_table, source_table);
+      tables, rows);
+  fmt::print("\n{}", tables);
   std::ofstream(fs::path(o.out) / "summary.md") << summary;
   return kSuccess;
 }
