@@ -7,6 +7,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "html.hpp"
 #include "plot.hpp"
 #include "summary.hpp"
 
@@ -122,20 +123,7 @@ Figure estimates(const std::vector<std::pair<const Run*, std::string>>& runs, co
   return f;
 }
 
-std::string escape(const std::string& text) {
-  std::string out;
-  for (const char c : text) {
-    if (c == '<')
-      out += "&lt;";
-    else if (c == '>')
-      out += "&gt;";
-    else if (c == '&')
-      out += "&amp;";
-    else
-      out += c;
-  }
-  return out;
-}
+using plot::html_escape;
 
 std::string plant_name(PlantKind p) { return p == PlantKind::mujoco ? "mujoco" : "dyncc"; }
 
@@ -192,10 +180,10 @@ void write_report(const std::vector<PaperRuns>& plants, const std::filesystem::p
                                          : "dyncc (generated model, RK4)");
     for (const Finding& f : paper_findings(p)) {
       html += fmt::format("<tr><td class=\"{}\">({}) {}</td><td>{}</td><td>{}</td></tr>\n", f.holds ? "ok" : "no", f.id,
-                          f.holds ? "holds" : "does not hold", escape(f.claim), escape(f.evidence));
+                          f.holds ? "holds" : "does not hold", html_escape(f.claim), html_escape(f.evidence));
     }
-    html += "</table>\n<h3>Summary</h3>\n<pre>" + escape(summary_table(p.summaries)) + "</pre>\n";
-    html += "<h3>Final estimates</h3>\n<pre>" + escape(estimate_table(p.summaries)) + "</pre>\n";
+    html += "</table>\n<h3>Summary</h3>\n<pre>" + html_escape(summary_table(p.summaries)) + "</pre>\n";
+    html += "<h3>Final estimates</h3>\n<pre>" + html_escape(estimate_table(p.summaries)) + "</pre>\n";
     for (const char* fig : {"fig4-angles-adaptive", "fig5-angles-fixed", "fig6-errors", "fig7-1kg", "fig8-simplified",
                             "contact-estimates", "contact-errors"}) {
       html += fmt::format("<p><img src=\"{}/{}.svg\" alt=\"{}\"></p>\n", name, fig, fig);

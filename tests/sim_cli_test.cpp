@@ -15,34 +15,6 @@
 namespace dyncc::test {
 namespace {
 
-// A CSV log as columns by header name.
-struct Csv {
-  std::vector<std::string> header;
-  std::vector<std::vector<double>> rows;
-  [[nodiscard]] int column(const std::string& name) const {
-    for (std::size_t i = 0; i < header.size(); ++i) {
-      if (header[i] == name) return static_cast<int>(i);
-    }
-    return -1;
-  }
-};
-
-Csv read_csv(const std::filesystem::path& path) {
-  Csv csv;
-  std::ifstream in(path);
-  std::string line, cell;
-  std::getline(in, line);
-  std::stringstream head(line);
-  while (std::getline(head, cell, ',')) csv.header.push_back(cell);
-  while (std::getline(in, line)) {
-    std::stringstream cells(line);
-    std::vector<double> row;
-    while (std::getline(cells, cell, ',')) row.push_back(std::stod(cell));
-    csv.rows.push_back(row);
-  }
-  return csv;
-}
-
 TEST(SimulateCommand, WritesTheLogFiguresAndSummary) {
   const auto out = output_path("run");
   const DynccRun run = run_dyncc("simulate --scenario paper-0.5kg --adaptation off --duration 3 --out " + quoted(out));

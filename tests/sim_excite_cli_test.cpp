@@ -15,25 +15,6 @@
 namespace dyncc::test {
 namespace {
 
-struct Log {
-  std::string header;
-  std::vector<std::vector<double>> rows;
-};
-
-Log read_log(const std::filesystem::path& path) {
-  Log log;
-  std::ifstream in(path);
-  std::getline(in, log.header);
-  std::string line, cell;
-  while (std::getline(in, line)) {
-    std::stringstream cells(line);
-    std::vector<double> row;
-    while (std::getline(cells, cell, ',')) row.push_back(std::stod(cell));
-    log.rows.push_back(row);
-  }
-  return log;
-}
-
 TEST(ExciteCommand, WritesOneRowPerControlStepWithQuantisedPositions) {
   const double quantum = 2 * 3.14159265358979323846 / 4096;
   for (const int rate : {81, 1000}) {
@@ -41,8 +22,8 @@ TEST(ExciteCommand, WritesOneRowPerControlStepWithQuantisedPositions) {
     const DynccRun run =
         run_dyncc("excite --rate " + std::to_string(rate) + " --duration 2 --seed 3 --noise 0 --out " + quoted(out));
     ASSERT_EQ(run.exit_code, 0) << run.errors;
-    const Log log = read_log(out);
-    EXPECT_EQ(log.header, "t,q1,q2,q3,tau1,tau2,tau3");
+    const Csv log = read_csv(out);
+    EXPECT_EQ(log.header, (std::vector<std::string>{"t", "q1", "q2", "q3", "tau1", "tau2", "tau3"}));
     ASSERT_EQ(log.rows.size(), static_cast<std::size_t>(2 * rate));
     for (std::size_t i = 0; i < log.rows.size(); ++i) {
       const auto& row = log.rows[i];
@@ -67,7 +48,7 @@ TEST(ExciteCommand, AppliesTheEffectsFile) {
   const std::string common = "excite --trajectory fourier --rate 200 --duration 6 --noise 0 --effects ";
   ASSERT_EQ(run_dyncc(common + quoted(none) + " --out " + quoted(a)).exit_code, 0);
   ASSERT_EQ(run_dyncc(common + quoted(gain) + " --out " + quoted(b)).exit_code, 0);
-  const Log free = read_log(a), gained = read_log(b);
+  const Csv free = read_csv(a), gained = read_csv(b);
   ASSERT_EQ(free.rows.size(), gained.rows.size());
   double ratio_num = 0, ratio_den = 0;
   for (std::size_t i = 600; i < free.rows.size(); ++i) {

@@ -11,27 +11,13 @@
 #include "diagnose/diagnosis_output.hpp"
 #include "diagnose/report_figures.hpp"
 #include "diagnose/residuals.hpp"
+#include "html.hpp"
 #include "plot.hpp"
 
 namespace dyncc::diagnose {
 namespace {
 
-std::string escape(const std::string& text) {
-  std::string out;
-  for (const char c : text) {
-    if (c == '<')
-      out += "&lt;";
-    else if (c == '>')
-      out += "&gt;";
-    else if (c == '&')
-      out += "&amp;";
-    else if (c == '"')
-      out += "&quot;";
-    else
-      out += c;
-  }
-  return out;
-}
+using plot::html_escape;
 
 std::string number(const nlohmann::json& v) { return v.is_number() ? fmt::format("{:.4g}", v.get<double>()) : "-"; }
 
@@ -61,8 +47,8 @@ std::string verdict_html(const nlohmann::json& v) {
   std::string why;
   if (effect == "none") why = " (the gap is immaterial or at the noise floor)";
   if (effect == "unknown") why = " (a material gap above the noise floor that no effect of the library explains)";
-  return fmt::format("<p class=\"verdict\">Verdict: <b>{}</b> on joints {}, confidence {:.2f}{}</p>\n", escape(effect),
-                     joints(v["joints"]), v["confidence"].get<double>(), why);
+  return fmt::format("<p class=\"verdict\">Verdict: <b>{}</b> on joints {}, confidence {:.2f}{}</p>\n",
+                     html_escape(effect), joints(v["joints"]), v["confidence"].get<double>(), why);
 }
 
 std::string gap_html(const nlohmann::json& gap) {
@@ -85,7 +71,7 @@ std::string gap_html(const nlohmann::json& gap) {
     html += "<p>Flagged windows (residual over twice its usual level):</p>\n<ul>\n";
     for (const auto& w : gap["windows"]) {
       html += fmt::format("<li>{}: {:.1f}&ndash;{:.1f} s, {:.1f}&times; the usual residual</li>\n",
-                          escape(w["log"].get<std::string>()), w["start"].get<double>(), w["end"].get<double>(),
+                          html_escape(w["log"].get<std::string>()), w["start"].get<double>(), w["end"].get<double>(),
                           w["rms_ratio"].get<double>());
     }
     html += "</ul>\n";
@@ -94,7 +80,8 @@ std::string gap_html(const nlohmann::json& gap) {
       "<p>By regime (held-out RMS per joint, N m; share of the samples):</p>\n<table><tr><th>regime</th>"
       "<th>RMS</th><th>share</th></tr>\n";
   for (const auto& [name, r] : gap["regimes"].items()) {
-    html += fmt::format("<tr><td>{}</td><td>{}</td><td>{}</td></tr>\n", escape(name), list(r["rms"]), list(r["share"]));
+    html += fmt::format("<tr><td>{}</td><td>{}</td><td>{}</td></tr>\n", html_escape(name), list(r["rms"]),
+                        list(r["share"]));
   }
   return html + "</table>\n";
 }
@@ -106,7 +93,7 @@ std::string ranking_html(const nlohmann::json& ranking) {
   for (const auto& r : ranking) {
     const char* note = !r["plausible"].get<bool>() ? "implausible fit" : "";
     html += fmt::format("<tr><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>\n",
-                        escape(r["effect"].get<std::string>()), joints(r["joints"]), list(r["heldout_rms_before"]),
+                        html_escape(r["effect"].get<std::string>()), joints(r["joints"]), list(r["heldout_rms_before"]),
                         list(r["heldout_rms_after"]), shrink(r), note);
   }
   return html + "</table>\n";
@@ -115,7 +102,7 @@ std::string ranking_html(const nlohmann::json& ranking) {
 std::string parameters_html(const nlohmann::json& effect) {
   std::string html = "<table><tr><th>parameter</th><th>value</th><th>&plusmn; error</th></tr>\n";
   for (const auto& p : effect["parameters"]) {
-    html += fmt::format("<tr><td>{}</td><td>{}</td><td>{}</td></tr>\n", escape(p["name"].get<std::string>()),
+    html += fmt::format("<tr><td>{}</td><td>{}</td><td>{}</td></tr>\n", html_escape(p["name"].get<std::string>()),
                         number(p["value"]), number(p["error"]));
   }
   return html + "</table>\n";
@@ -126,7 +113,7 @@ std::string selected_html(const nlohmann::json& j) {
   if (j["selected"].empty()) html += "<p>No effect was accepted.</p>\n";
   int k = 0;
   for (const auto& s : j["selected"]) {
-    html += fmt::format("<h3>{}. {} on joints {}: shrink {}</h3>\n", ++k, escape(s["effect"].get<std::string>()),
+    html += fmt::format("<h3>{}. {} on joints {}: shrink {}</h3>\n", ++k, html_escape(s["effect"].get<std::string>()),
                         joints(s["joints"]), shrink(s));
     if (s.contains("velocity_scale")) {
       html += fmt::format("<p>velocity scale {} rad/s</p>\n", number(s["velocity_scale"]));
@@ -148,7 +135,7 @@ std::string audit_html(const nlohmann::json& j) {
         "<p>{}: {} samples, {:.1f} s at {:.1f} Hz (jitter {:.1f} %, largest gap {:.1f}&times; the median "
         "interval)</p>\n<table><tr><th>joint</th><th>position quantum</th><th>position noise</th>"
         "<th>torque noise</th></tr>\n",
-        escape(a["log"].get<std::string>()), a["samples"].get<long>(), a["duration_s"].get<double>(),
+        html_escape(a["log"].get<std::string>()), a["samples"].get<long>(), a["duration_s"].get<double>(),
         a["rate_hz"].get<double>(), 100 * a["jitter"].get<double>(), a["largest_gap"].get<double>());
     int joint = 0;
     for (const auto& q : a["joints"]) {
@@ -223,7 +210,7 @@ void write_diagnosis_report(const Dataset& data, const pipeline::Derivation& der
   for (const auto& [figure, shown] : figures) plot::write_figure(figure, dir / shown.name);
 
   std::string logs;
-  for (const std::string& log : data.logs) logs += (logs.empty() ? "" : ", ") + escape(log);
+  for (const std::string& log : data.logs) logs += (logs.empty() ? "" : ", ") + html_escape(log);
   std::string html = fmt::format(
       "<!doctype html>\n<html><head><meta charset=\"utf-8\"><title>dyncc diagnose: {}</title>\n"
       "<style>body{{font-family:sans-serif;max-width:1000px;margin:auto}}img{{width:100%}}"
@@ -231,7 +218,7 @@ void write_diagnosis_report(const Dataset& data, const pipeline::Derivation& der
       "tr:nth-child(even){{background:#f4f4f4}}.verdict{{font-size:1.3em}}.caption{{color:#444;font-size:0.9em}}"
       "</style></head><body>\n<h1>Diagnosis of {} against its logs</h1>\n<p>Logs: {}. The numbers are also in "
       "<a href=\"diagnosis.json\">diagnosis.json</a> and <a href=\"summary.txt\">summary.txt</a>.</p>\n",
-      escape(derivation.robot.name), escape(derivation.robot.name), logs);
+      html_escape(derivation.robot.name), html_escape(derivation.robot.name), logs);
   html += verdict_html(j["verdict"]);
   html += "<h2>Gap per joint</h2>\n" + gap_html(j["gap"]);
   html += figure_html(figures.front().second);
