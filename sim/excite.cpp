@@ -182,6 +182,19 @@ std::string excite_summary(const ExciteRun& run) {
         run.table_height, 1e3 * (run.table_height - run.lowest_hook),
         100.0 * static_cast<double>(contact) / static_cast<double>(run.samples.size()), force);
   }
+  if (s.effects.payload > 0) {
+    double on = -1, off = -1;
+    for (const ExciteSample& x : run.samples) {
+      if (x.payload && on < 0) on = x.t;
+      if (!x.payload && on >= 0 && off < 0) off = x.t;
+    }
+    if (on < 0) {
+      out += "the payload is never on the hook\n";
+    } else {
+      out += fmt::format("payload {} kg on the hook from {:.3f} s to {}\n", s.effects.payload, on,
+                         off < 0 ? std::string("the end") : fmt::format("{:.3f} s", off));
+    }
+  }
   return out;
 }
 

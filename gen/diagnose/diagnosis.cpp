@@ -25,6 +25,7 @@ struct Candidate {
   const Effect* effect = nullptr;
   CrossValidation cv;
   double shrink = 0, low = 0, high = 0;
+  std::vector<double> folds;  // shrink per held-out fold
   Eigen::VectorXd after;
   double explained = 0;   // sum over joints of (before^2 - after^2) / torque_rms^2
   double material = 0;    // largest per-joint explained RMS / torque RMS
@@ -41,6 +42,15 @@ double score(const Eigen::VectorXd& stacked, const Eigen::VectorXd& weight, Eige
   return sum;
 }
 
+// Half the 95 % interval of a mean over the folds.
+double half_interval(const std::vector<double>& folds) {
+  const auto k = static_cast<double>(folds.size());
+  const double mean = std::accumulate(folds.begin(), folds.end(), 0.0) / k;
+  double var = 0;
+  for (const double f : folds) var += (f - mean) * (f - mean);
+  return kStudent95 * std::sqrt(var / (k - 1) / k);
+}
+
 Candidate evaluate(const Effect& effect, const Eigen::MatrixXd& accepted, const Eigen::VectorXd& r0,
                    const Eigen::VectorXd& baseline, const Eigen::VectorXd& weight, Eigen::Index n) {
   Candidate c;
@@ -50,18 +60,13 @@ Candidate evaluate(const Effect& effect, const Eigen::MatrixXd& accepted, const 
   c.cv = cross_validate(r0, e, n, weight);
   const Eigen::Index samples = r0.size() / n;
   c.shrink = 1.0 - score(c.cv.heldout, weight, n, 0, samples) / score(baseline, weight, n, 0, samples);
-  std::vector<double> folds;
   Eigen::Index begin = 0;
   for (const Eigen::Index end : c.cv.fold_end) {
     const double before = score(baseline, weight, n, begin, end);
-    folds.push_back(before > 0 ? 1.0 - score(c.cv.heldout, weight, n, begin, end) / before : 0.0);
+    c.folds.push_back(before > 0 ? 1.0 - score(c.cv.heldout, weight, n, begin, end) / before : 0.0);
     begin = end;
   }
-  const double mean = std::accumulate(folds.begin(), folds.end(), 0.0) / static_cast<double>(folds.size());
-  double var = 0;
-  for (const double f : folds) var += (f - mean) * (f - mean);
-  const double half =
-      kStudent95 * std::sqrt(var / static_cast<double>(folds.size() - 1) / static_cast<double>(folds.size()));
+  const double half = half_interval(c.folds);
   c.low = c.shrink - half;
   c.high = c.shrink + half;
   c.after = joint_rms(c.cv.heldout, n);
@@ -129,24 +134,23 @@ std::vector<int> own_joints(const Candidate& c, Eigen::Index offset, const Eigen
   return joints;
 }
 
-// A contact's point of action in the link frame, from its force and moments (c = M / F), and the
-// surface height of its profile point.
-void add_contact_point(RankedEffect& r) {
+// A point of action in the link frame from a total and its first moments (c = M / F): a
+// contact's from its force and moments, a load's from its mass and m c.
+void add_point(RankedEffect& r, const std::string& total, const std::string& moment_prefix) {
   auto find = [&](const std::string& name) {
     for (const FittedParameter& p : r.parameters) {
       if (p.name == name) return p;
     }
     return FittedParameter{};
   };
-  const FittedParameter force = find("force");
-  if (force.value == 0) return;
+  const FittedParameter whole = find(total);
+  if (whole.value == 0) return;
   for (const char axis : {'x', 'y', 'z'}) {
-    const FittedParameter moment = find(std::string("moment_") + axis);
-    const double value = moment.value / force.value;
-    const double error = std::hypot(moment.error, value * force.error) / std::abs(force.value);
+    const FittedParameter moment = find(moment_prefix + axis);
+    const double value = moment.value / whole.value;
+    const double error = std::hypot(moment.error, value * whole.error) / std::abs(whole.value);
     r.parameters.push_back({std::string("point_") + axis, value, error});
   }
-  r.parameters.push_back({"surface_height", r.profile, 0.0});
 }
 
 RankedEffect describe(const Candidate& c, const Eigen::VectorXd& before, Eigen::Index offset,
@@ -181,7 +185,12 @@ RankedEffect describe(const Candidate& c, const Eigen::VectorXd& before, Eigen::
         (1e-6 * (1 + std::abs(theta)));
     r.parameters.push_back({e.parameters[static_cast<std::size_t>(k)], value, derivative * error});
   }
-  if (e.family == "contact") add_contact_point(r);
+  if (e.family == "contact") {
+    add_point(r, "force", "moment_");
+    r.parameters.push_back({"surface_height", r.profile, 0.0});
+  }
+  if (e.family == "payload") add_point(r, "mass", "m");
+  for (const ShapeValue& v : e.shape) r.parameters.push_back({v.name, v.value, v.resolution});
   return r;
 }
 
@@ -461,7 +470,7 @@ Diagnosis diagnose(const Dataset& d, const pipeline::Derivation& derivation) {
     // block it). Parsimony among equal explanations: two candidates are equal when what one
     // explains beyond the other is immaterial (below kMaterial of the torque RMS); of acceptable
     // equals the fewest columns win, and equals whose columns do not contain the chosen ones are
-    // alternatives ("A or B").
+    // alternatives ("A or B") when they are acceptable on their own.
     const auto first = std::find_if(order.begin(), order.end(), acceptable);
     if (first == order.end()) break;
     const Candidate* top = *first;
@@ -503,7 +512,7 @@ Diagnosis diagnose(const Dataset& d, const pipeline::Derivation& derivation) {
     }
     r.accepted = true;
     for (const Candidate* c : order) {
-      if (c == chosen || !c->plausible || !equal(c)) continue;
+      if (c == chosen || !acceptable(c) || !equal(c)) continue;
       if (spans(c->effect->columns, chosen->effect->columns)) continue;  // a superset: the same explanation
       if (c->effect->columns.cols() > 2 * chosen->effect->columns.cols()) continue;
       r.effect += " or " + c->effect->name;

@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "diagnose/contact.hpp"
+#include "diagnose/payload.hpp"
 
 namespace dyncc::diagnose {
 namespace {
@@ -181,26 +182,6 @@ std::vector<Effect> candidate_effects(const Dataset& d, const pipeline::Derivati
     e.reading = {Reading::as_is};
     out.push_back(e);
   }
-  {  // A payload: the standard columns of the payload link (mass, first and second moments).
-    const int link = payload_link(derivation);
-    Effect e;
-    e.name = e.family = "payload";
-    const char* names[] = {"mass", "mx", "my", "mz", "xx", "xy", "xz", "yy", "yz", "zz"};
-    std::vector<int> columns;
-    for (int k = 0; k < 10; ++k) {
-      const int index =
-          link >= 0 ? derivation.model.params.of_link[static_cast<std::size_t>(link)][static_cast<std::size_t>(k)] : -1;
-      if (index < 0) continue;
-      columns.push_back(index);
-      e.parameters.emplace_back(names[k]);
-      e.joint_of.push_back(-1);
-      e.reading.push_back(Reading::as_is);
-    }
-    e.columns.resize(rows, static_cast<Eigen::Index>(columns.size()));
-    for (std::size_t c = 0; c < columns.size(); ++c)
-      e.columns.col(static_cast<Eigen::Index>(c)) = d.standard.col(columns[c]);
-    if (!columns.empty()) out.push_back(e);
-  }
   {  // Within the model's structure: every rigid-body base parameter re-identified.
     Effect e;
     e.name = e.family = "inertial_parameters";
@@ -212,6 +193,7 @@ std::vector<Effect> candidate_effects(const Dataset& d, const pipeline::Derivati
   }
   // Into the analysis rows, through the filter the logged torque went through.
   for (Effect& e : out) e.columns = d.condition(e.columns);
+  add_payload_effects(d, derivation, out);  // conditioned as they are made (a load's point is fitted)
   add_contact_effects(d, derivation, out);  // conditioned as they are made (many profile points)
   return out;
 }

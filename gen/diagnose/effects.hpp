@@ -17,6 +17,13 @@ namespace dyncc::diagnose {
 /// How a fitted column value turns into the effect's physical parameter.
 enum class Reading { as_is, reciprocal, gain };
 
+/// A value of an effect chosen by a search rather than fitted (when a load was picked up), reported
+/// beside the fitted parameters with the search's resolution as its error.
+struct ShapeValue {
+  std::string name;
+  double value = 0, resolution = 0;
+};
+
 struct Effect {
   std::string name;                     // the JSON vocabulary: coulomb_friction, payload, ...
   Eigen::MatrixXd columns;              // S*n x k
@@ -25,6 +32,7 @@ struct Effect {
   std::vector<Reading> reading;         // per column
   std::string profile_name;             // "velocity_scale" for a profile effect, else empty
   double profile = 0;
+  std::vector<ShapeValue> shape;
   std::string family;  // effects of one family are alternatives of each other
 };
 

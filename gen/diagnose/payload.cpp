@@ -1,0 +1,141 @@
+#include "diagnose/payload.hpp"
+
+#include <array>
+#include <cmath>
+
+#include "diagnose/payload_window.hpp"
+
+namespace dyncc::diagnose {
+namespace {
+
+constexpr int kPointPasses = 4;
+constexpr double kFarthestPoint = 2.0;  // m from the link origin: beyond it the point is not a load's
+// An axis along which a load's place is not resolved: moving it 1 m along the axis changes the
+// torque (beyond what the other columns can mimic) by less than this share of the load's own
+// torque. Kraft's forearm z (along the parallel joint axes: no gravity moment) is such an axis.
+constexpr double kResolvedPerMetre = 0.25;
+
+// The payload link's ten standard columns (evaluation rows, S*n x 10; zero where the description
+// has no such parameter).
+Eigen::MatrixXd standard_columns(const Dataset& d, const pipeline::Derivation& derivation) {
+  Eigen::MatrixXd all = Eigen::MatrixXd::Zero(d.samples() * d.n, 10);
+  const int link = payload_link(derivation);
+  if (link < 0) return {};
+  const auto& of = derivation.model.params.of_link[static_cast<std::size_t>(link)];
+  if (of[0] < 0) return {};  // no mass column
+  for (std::size_t k = 0; k < 10; ++k) {
+    if (of[k] >= 0) all.col(static_cast<Eigen::Index>(k)) = d.standard.col(of[k]);
+  }
+  return all;
+}
+
+// Point mass at c: [m, m cx, m cy, m cz] columns, the mass column carrying the second moments.
+Eigen::MatrixXd point_mass(const Eigen::MatrixXd& all, const Eigen::Vector3d& c) {
+  Eigen::Matrix<double, 6, 1> second;  // XX, XY, XZ, YY, YZ, ZZ of a unit mass at c (tensor entries)
+  second << c.y() * c.y() + c.z() * c.z(), -c.x() * c.y(), -c.x() * c.z(), c.x() * c.x() + c.z() * c.z(),
+      -c.y() * c.z(), c.x() * c.x() + c.y() * c.y();
+  Eigen::MatrixXd out(all.rows(), 4);
+  out.col(0) = all.col(0) + all.rightCols(6) * second;
+  out.rightCols(3) = all.middleCols(1, 3);
+  return out;
+}
+
+Eigen::VectorXd row_weight(const Dataset& d, const Eigen::VectorXd& joint_weight, Eigen::Index rows) {
+  Eigen::VectorXd w(rows);
+  for (Eigen::Index r = 0; r < rows; ++r) w[r] = joint_weight[r % d.n];
+  return w;
+}
+
+// Which of the first moments (x, y, z) the data resolves, from conditioned point-mass columns.
+std::array<bool, 3> resolved_axes(const Eigen::MatrixXd& columns, const Eigen::VectorXd& w) {
+  const Eigen::MatrixXd a = w.asDiagonal() * columns;
+  std::array<bool, 3> out{};
+  const double own = a.col(0).norm();
+  for (Eigen::Index k = 1; k < 4; ++k) {
+    Eigen::MatrixXd others(a.rows(), 3);
+    Eigen::Index c = 0;
+    for (Eigen::Index j = 0; j < 4; ++j) {
+      if (j != k) others.col(c++) = a.col(j);
+    }
+    const Eigen::VectorXd unique = a.col(k) - others * others.colPivHouseholderQr().solve(a.col(k));
+    out[static_cast<std::size_t>(k - 1)] = own > 0 && unique.norm() >= kResolvedPerMetre * own;
+  }
+  return out;
+}
+
+Eigen::VectorXd joint_weight(const Dataset& d) {
+  const Eigen::VectorXd rms = d.analysis_tau.array().square().colwise().mean().sqrt().transpose();
+  return rms.cwiseMax(1e-3 * rms.maxCoeff() + 1e-12).cwiseInverse();
+}
+
+// The point of a load from conditioned standard columns: fixed-point passes of the weighted fit,
+// along the resolved axes (the others stay 0).
+Eigen::Vector3d load_point(const Dataset& d, const Eigen::MatrixXd& conditioned, const Eigen::VectorXd& weight,
+                           const std::array<bool, 3>& resolved) {
+  const Eigen::VectorXd w = row_weight(d, weight, conditioned.rows());
+  Eigen::Vector3d c = Eigen::Vector3d::Zero();
+  for (int pass = 0; pass < kPointPasses; ++pass) {
+    Eigen::MatrixXd a = w.asDiagonal() * point_mass(conditioned, c);
+    for (std::size_t k = 0; k < 3; ++k) {
+      if (!resolved[k]) a.col(static_cast<Eigen::Index>(k) + 1).setZero();
+    }
+    const Eigen::VectorXd theta = a.colPivHouseholderQr().solve(w.asDiagonal() * d.residual);
+    if (!(theta[0] > 0)) return Eigen::Vector3d::Zero();  // no load to place
+    const Eigen::Vector3d next = theta.tail<3>() / theta[0];
+    if (!next.allFinite() || next.norm() > kFarthestPoint) return c;
+    c = next;
+  }
+  return c;
+}
+
+// The point-mass columns at c, without the first moments the data does not resolve (nor those
+// the description does not have: a first moment it sets identically 0).
+Effect payload_effect(const Eigen::MatrixXd& conditioned, const Eigen::Vector3d& c,
+                      const std::array<bool, 3>& resolved) {
+  Effect e;
+  e.name = e.family = "payload";
+  e.columns = point_mass(conditioned, c);
+  e.parameters = {"mass", "mx", "my", "mz"};
+  e.joint_of.assign(4, -1);
+  e.reading.assign(4, Reading::as_is);
+  std::vector<Eigen::Index> keep;
+  for (Eigen::Index k = 0; k < 4; ++k) {
+    if (e.columns.col(k).squaredNorm() > 0 && (k == 0 || resolved[static_cast<std::size_t>(k - 1)])) keep.push_back(k);
+  }
+  if (static_cast<Eigen::Index>(keep.size()) < 4) {
+    Effect kept = e;
+    kept.columns.resize(e.columns.rows(), static_cast<Eigen::Index>(keep.size()));
+    kept.parameters.clear();
+    for (std::size_t k = 0; k < keep.size(); ++k) {
+      kept.columns.col(static_cast<Eigen::Index>(k)) = e.columns.col(keep[k]);
+      kept.parameters.push_back(e.parameters[static_cast<std::size_t>(keep[k])]);
+    }
+    kept.joint_of.assign(keep.size(), -1);
+    kept.reading.assign(keep.size(), Reading::as_is);
+    return kept;
+  }
+  return e;
+}
+
+}  // namespace
+
+void add_payload_effects(const Dataset& d, const pipeline::Derivation& derivation, std::vector<Effect>& out) {
+  const Eigen::MatrixXd all = standard_columns(d, derivation);
+  if (all.size() == 0) return;
+  const Eigen::VectorXd weight = joint_weight(d);
+  const Eigen::MatrixXd conditioned = d.condition(all);
+  const auto resolved =
+      resolved_axes(point_mass(conditioned, Eigen::Vector3d::Zero()), row_weight(d, weight, conditioned.rows()));
+  out.push_back(payload_effect(conditioned, load_point(d, conditioned, weight, resolved), resolved));
+
+  const auto window = find_payload_window(d, out.back().columns, d.residual, weight);
+  if (!window) return;
+  const Eigen::MatrixXd carried = d.condition(gated(d, all, *window));
+  Effect e = payload_effect(carried, load_point(d, carried, weight, resolved), resolved);
+  if (std::isfinite(window->start)) e.shape.push_back({"picked_up_at", window->start, d.step});
+  if (std::isfinite(window->end)) e.shape.push_back({"put_down_at", window->end, d.step});
+  if (d.logs.size() > 1) e.shape.push_back({"log", static_cast<double>(window->log + 1), 0.0});
+  out.push_back(std::move(e));
+}
+
+}  // namespace dyncc::diagnose

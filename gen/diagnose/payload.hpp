@@ -1,0 +1,20 @@
+// The payload candidates: a load on the payload link as a point mass m at a point c of the link
+// frame, carried over the whole log or only while it was picked up (payload_window). Its standard
+// parameters are m, m c and m (|c|^2 I - c c^T): linear in m and m c once the point is known, so
+// the point is found by a few fixed-point passes (fit m and m c with the second moments of the
+// last point, read c = m c / m) and the fit stays four columns, not the ten of a free rigid body,
+// which would also absorb what is not a load (the link's own inertia errors are
+// inertial_parameters).
+#pragma once
+
+#include <vector>
+
+#include "diagnose/dataset.hpp"
+#include "diagnose/effects.hpp"
+
+namespace dyncc::diagnose {
+
+/// Appends the payload effects (conditioned, in the analysis rows) for the robot's payload link.
+void add_payload_effects(const Dataset& d, const pipeline::Derivation& derivation, std::vector<Effect>& out);
+
+}  // namespace dyncc::diagnose

@@ -1,0 +1,115 @@
+#include "diagnose/payload_window.hpp"
+
+#include <algorithm>
+#include <limits>
+#include <vector>
+
+namespace dyncc::diagnose {
+namespace {
+
+constexpr Eigen::Index kGridPoints = 48;  // coarse grid of window edges per log
+constexpr int kRefinePasses = 3;          // edge-by-edge refinement at single rows
+
+// Running sums over the analysis rows of one log: the normal equations of any window are two
+// differences.
+class WindowFits {
+ public:
+  WindowFits(const Dataset& d, const Eigen::MatrixXd& columns, const Eigen::VectorXd& residual,
+             const Eigen::VectorXd& weight, Eigen::Index begin, Eigen::Index end)
+      : begin_(begin), k_(columns.cols()) {
+    const Eigen::Index n = d.n;
+    normal_.assign(static_cast<std::size_t>(end - begin + 1), Eigen::MatrixXd::Zero(k_, k_));
+    right_.assign(normal_.size(), Eigen::VectorXd::Zero(k_));
+    const Eigen::VectorXd w2 = weight.array().square();
+    for (Eigen::Index a = begin; a < end; ++a) {
+      const auto block = columns.middleRows(a * n, n);
+      const auto r = residual.segment(a * n, n);
+      const auto s = static_cast<std::size_t>(a - begin);
+      normal_[s + 1] = normal_[s] + block.transpose() * w2.asDiagonal() * block;
+      right_[s + 1] = right_[s] + block.transpose() * w2.asDiagonal() * r;
+    }
+  }
+  /// What fitting the columns over rows [a, b) removes from the weighted sum of squares.
+  [[nodiscard]] double explained(Eigen::Index a, Eigen::Index b) const {
+    const auto sa = static_cast<std::size_t>(a - begin_), sb = static_cast<std::size_t>(b - begin_);
+    Eigen::MatrixXd m = normal_[sb] - normal_[sa];
+    const Eigen::VectorXd v = right_[sb] - right_[sa];
+    // A whisker of ridge: a window where some payload column vanishes (a symmetric motion) still
+    // has a fit.
+    m.diagonal().array() += 1e-9 * (m.trace() / static_cast<double>(k_) + 1e-300);
+    return v.dot(m.ldlt().solve(v));
+  }
+
+ private:
+  Eigen::Index begin_, k_;
+  std::vector<Eigen::MatrixXd> normal_;
+  std::vector<Eigen::VectorXd> right_;
+};
+
+}  // namespace
+
+std::optional<PayloadWindow> find_payload_window(const Dataset& d, const Eigen::MatrixXd& columns,
+                                                 const Eigen::VectorXd& residual, const Eigen::VectorXd& weight) {
+  std::optional<PayloadWindow> best;
+  const Eigen::Index rows = d.rows();
+  for (Eigen::Index begin = 0; begin < rows;) {
+    const int log = d.analysis_log[static_cast<std::size_t>(begin)];
+    Eigen::Index end = begin;
+    while (end < rows && d.analysis_log[static_cast<std::size_t>(end)] == log) ++end;
+    const Eigen::Index length = end - begin;
+    const Eigen::Index step = length / kGridPoints;
+    if (step >= 2) {
+      const WindowFits fits(d, columns, residual, weight, begin, end);
+      const Eigen::Index shortest = 2 * step;  // a load carried for under ~4 % of the log is not sought
+      auto allowed = [&](Eigen::Index a, Eigen::Index b) {
+        return a >= begin && b <= end && b - a >= shortest && !(a == begin && b == end);
+      };
+      Eigen::Index a_best = -1, b_best = -1;
+      double value = -1;
+      auto consider = [&](Eigen::Index a, Eigen::Index b) {
+        if (!allowed(a, b)) return;
+        const double x = fits.explained(a, b);
+        if (x > value) {
+          value = x;
+          a_best = a;
+          b_best = b;
+        }
+      };
+      std::vector<Eigen::Index> grid;
+      for (Eigen::Index g = 0; g < kGridPoints; ++g) grid.push_back(begin + g * step);
+      grid.push_back(end);
+      for (std::size_t i = 0; i < grid.size(); ++i) {
+        for (std::size_t j = i + 1; j < grid.size(); ++j) consider(grid[i], grid[j]);
+      }
+      for (int pass = 0; pass < kRefinePasses && a_best >= 0; ++pass) {
+        const Eigen::Index a0 = a_best, b0 = b_best;
+        for (Eigen::Index a = a0 - 2 * step; a <= a0 + 2 * step; ++a) consider(a, b_best);
+        for (Eigen::Index b = b0 - 2 * step; b <= b0 + 2 * step; ++b) consider(a_best, b);
+      }
+      if (a_best >= 0 && (!best || value > best->explained)) {
+        constexpr double kInf = std::numeric_limits<double>::infinity();
+        const auto& t = d.analysis_t;
+        best = PayloadWindow{log,
+                             a_best,
+                             b_best,
+                             a_best == begin ? -kInf : 0.5 * (t[a_best - 1] + t[a_best]),
+                             b_best == end ? kInf : 0.5 * (t[b_best - 1] + t[b_best]),
+                             value};
+      }
+    }
+    begin = end;
+  }
+  return best;
+}
+
+Eigen::MatrixXd gated(const Dataset& d, const Eigen::MatrixXd& columns, const PayloadWindow& window) {
+  Eigen::MatrixXd out = columns;
+  for (Eigen::Index s = 0; s < d.samples(); ++s) {
+    const bool carried =
+        d.log_of[static_cast<std::size_t>(s)] == window.log && d.t[s] >= window.start && d.t[s] < window.end;
+    if (!carried) out.middleRows(s * d.n, d.n).setZero();
+  }
+  return out;
+}
+
+}  // namespace dyncc::diagnose

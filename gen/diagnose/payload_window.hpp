@@ -1,0 +1,32 @@
+// When a load was carried: a payload picked up and put down during a log (the paper's
+// experiments) changes the torque only inside a time window, so a payload fitted over the whole
+// log explains it half and varies wildly between the folds. The window is found from the data:
+// the interval of one log whose gated payload columns explain the most of the nominal residual
+// in a least-squares sense, searched on a coarse grid of the analysis rows and then refined edge
+// by edge to single rows. Running sums over time make every window's fit a k x k solve.
+#pragma once
+
+#include <Eigen/Dense>
+#include <optional>
+
+#include "diagnose/dataset.hpp"
+
+namespace dyncc::diagnose {
+
+struct PayloadWindow {
+  int log = 0;
+  Eigen::Index first_row = 0, end_row = 0;  // analysis rows [first_row, end_row)
+  double start = 0, end = 0;                // s on the log's clock; -inf / +inf at the log's ends
+  double explained = 0;                     // weighted sum of squares the gated fit removes
+};
+
+/// The best proper sub-window (not the whole log: that is the constant payload) of any log, for
+/// the payload columns `columns` (analysis rows, A*n x k) against `residual` (A*n), joints
+/// weighted by `weight` (n). Empty when no log has enough rows for a window.
+std::optional<PayloadWindow> find_payload_window(const Dataset& d, const Eigen::MatrixXd& columns,
+                                                 const Eigen::VectorXd& residual, const Eigen::VectorXd& weight);
+
+/// The payload's columns (evaluation rows, S*n x k) kept only while the load is carried.
+Eigen::MatrixXd gated(const Dataset& d, const Eigen::MatrixXd& columns, const PayloadWindow& window);
+
+}  // namespace dyncc::diagnose
