@@ -106,6 +106,32 @@ TEST(InjectedEffects, TwoEffectsAreEachPlacedOnTheirOwnJoint) {
   ASSERT_EQ(d.accepted_effects.size(), d.selected.size());
 }
 
+// A payload picked up and put down during the log (the paper's task): the load is named, weighed
+// within 3 %, placed at the point it was injected (5 cm along the payload link's x) and the pick-up
+// and put-down are found within a quarter second; a load held over the whole log would explain
+// the two unloaded stretches wrongly.
+TEST(InjectedEffects, PayloadCarriedForAWhileIsFoundWithItsWindow) {
+  Injection payload;
+  payload.effect = "payload";
+  payload.size = 0.3;
+  diagnose::SyntheticOptions options;
+  options.payload_on = 11.3;
+  options.payload_off = 29.6;
+  std::string text;
+  const diagnose::Diagnosis d = run(payload, options, &text);
+  SCOPED_TRACE(text);
+  ASSERT_FALSE(d.selected.empty());
+  const auto& first = d.selected.front();
+  EXPECT_EQ(first.effect, "payload");
+  std::map<std::string, double> value;
+  for (const auto& p : first.parameters) value[p.name] = p.value;
+  ASSERT_TRUE(value.count("mass") && value.count("picked_up_at") && value.count("put_down_at"));
+  EXPECT_NEAR(value["mass"], 0.3, 0.03 * 0.3);
+  EXPECT_NEAR(value["point_x"], 0.05, 0.005);
+  EXPECT_NEAR(value["picked_up_at"], 11.3, 0.25);
+  EXPECT_NEAR(value["put_down_at"], 29.6, 0.25);
+}
+
 // The contact effect's geometry, against finite differences: minus the torque of a unit upward
 // force on a point (read from the regressor's gravity columns) is minus the gradient of the
 // point's height (read from the potential energy), at random configurations and points.

@@ -7,13 +7,19 @@ namespace {
 
 constexpr double kRidge = 1e-9;  // relative to the scaled normal matrix's unit diagonal
 
-Eigen::VectorXd solve(const Eigen::MatrixXd& a, const Eigen::VectorXd& b) {
-  const Eigen::Index k = a.cols();
-  Eigen::VectorXd scale(k);
-  for (Eigen::Index c = 0; c < k; ++c) {
+// Columns scaled by their norms over all rows (`scale`), not over the training rows: a column that
+// is nearly zero where a fold trains (a load carried only in the held-out stretch) is then held
+// near zero by the ridge instead of being blown up to unit size and predicting nonsense.
+Eigen::VectorXd column_scale(const Eigen::MatrixXd& a) {
+  Eigen::VectorXd scale(a.cols());
+  for (Eigen::Index c = 0; c < a.cols(); ++c) {
     const double norm = a.col(c).norm();
     scale[c] = norm > 0 ? 1.0 / norm : 0.0;
   }
+  return scale;
+}
+
+Eigen::VectorXd solve(const Eigen::MatrixXd& a, const Eigen::VectorXd& b, const Eigen::VectorXd& scale) {
   const Eigen::MatrixXd as = a * scale.asDiagonal();
   Eigen::MatrixXd normal = as.transpose() * as;
   normal.diagonal().array() += kRidge;
@@ -43,6 +49,7 @@ CrossValidation cross_validate(const Eigen::VectorXd& r, const Eigen::MatrixXd& 
   for (Eigen::Index s = 0; s < samples; ++s) w.segment(s * joints, joints) = weight;
   const Eigen::MatrixXd we = w.asDiagonal() * E;
   const Eigen::VectorXd wr = w.asDiagonal() * r;
+  const Eigen::VectorXd scale = column_scale(we);
   for (int f = 0; f < kFolds; ++f) {
     const Eigen::Index begin = samples * f / kFolds, end = samples * (f + 1) / kFolds;
     cv.fold_end.push_back(end);
@@ -53,12 +60,12 @@ CrossValidation cross_validate(const Eigen::VectorXd& r, const Eigen::MatrixXd& 
     b.head(begin * joints) = wr.head(begin * joints);
     a.bottomRows((samples - end) * joints) = we.bottomRows((samples - end) * joints);
     b.tail((samples - end) * joints) = wr.tail((samples - end) * joints);
-    const Eigen::VectorXd theta = solve(a, b);
+    const Eigen::VectorXd theta = solve(a, b, scale);
     cv.theta_folds.col(f) = theta;
     cv.heldout.segment(begin * joints, (end - begin) * joints) -=
         E.middleRows(begin * joints, (end - begin) * joints) * theta;
   }
-  cv.theta = solve(we, wr);
+  cv.theta = solve(we, wr, scale);
   const Eigen::VectorXd mean = cv.theta_folds.rowwise().mean();
   cv.theta_error =
       ((cv.theta_folds.colwise() - mean).array().square().rowwise().sum() * (static_cast<double>(kFolds - 1) / kFolds))

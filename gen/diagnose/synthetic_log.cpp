@@ -112,6 +112,8 @@ Sample sample(const pipeline::Derivation& d, const std::vector<Injection>& effec
   return s;
 }
 
+bool carried(const SyntheticOptions& o, double t) { return t >= o.payload_on && t < o.payload_off; }
+
 // What both the sizing and the writing start from: the trajectory and the true parameters.
 struct Scene {
   Scene(const pipeline::Derivation& d, const std::vector<Injection>& effects, const SyntheticOptions& o)
@@ -175,7 +177,7 @@ EffectSize effect_size(const pipeline::Derivation& d, const std::vector<Injectio
   const int samples = 2000;
   for (int i = 0; i < samples; ++i) {
     const double t = o.duration * i / samples;
-    const Sample s = sample(d, effects, ex, nominal, loaded, scene.surface, t);
+    const Sample s = sample(d, effects, ex, nominal, carried(o, t) ? loaded : nominal, scene.surface, t);
     // What the diagnosis sees: logged torque minus the model at the logged positions.
     Eigen::VectorXd q, qd, qdd;
     ex.at(t, q, qd, qdd);
@@ -208,7 +210,7 @@ void write_synthetic_log(const pipeline::Derivation& d, const std::vector<Inject
   const auto samples = static_cast<long>(o.duration * o.rate);
   for (long i = 0; i < samples; ++i) {
     const double t = static_cast<double>(i) / o.rate;
-    const Sample s = sample(d, effects, ex, nominal, loaded, scene.surface, t);
+    const Sample s = sample(d, effects, ex, nominal, carried(o, t) ? loaded : nominal, scene.surface, t);
     out << t;
     for (Eigen::Index k = 0; k < n; ++k) {
       out << ',' << (o.quantum > 0 ? o.quantum * std::round(s.logged_q[k] / o.quantum) : s.logged_q[k]);

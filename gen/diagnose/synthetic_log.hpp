@@ -28,6 +28,10 @@ struct SyntheticOptions {
   double torque_noise = 0.01;  // N m
   double amplitude = 1.0;      // scale of the excitation
   unsigned seed = 1;
+  // A payload is carried from payload_on to payload_off (s; the whole log by default): picked up
+  // and put down during the log.
+  double payload_on = 0;
+  double payload_off = 1e300;
 };
 
 /// The effects the generator can inject.
