@@ -333,6 +333,34 @@ Gap locate(const Dataset& d, const Eigen::VectorXd& r, const pipeline::Derivatio
   return g;
 }
 
+// Parsimony over two steps: a large column set (the whole inertial parameter set re-identified)
+// that two smaller effects explain together as well as it does alone (a rotor inertia and a
+// payload) is not the explanation: the first of the pair leads, the next step takes the second.
+template <typename Acceptable>
+const Candidate* first_of_a_smaller_pair(const Candidate* chosen, const std::vector<const Candidate*>& order,
+                                         const std::map<std::string, Candidate>& best, Acceptable acceptable,
+                                         const Eigen::MatrixXd& accepted, const Eigen::VectorXd& r0,
+                                         const Eigen::VectorXd& baseline, const Eigen::VectorXd& weight,
+                                         Eigen::Index n) {
+  const Eigen::Index size = chosen->effect->columns.cols();
+  const double as_good = chosen->shrink - 0.5 * (chosen->high - chosen->low);
+  for (const Candidate* first : order) {
+    const Eigen::Index first_size = first->effect->columns.cols();
+    if (first == chosen || !acceptable(first) || first_size >= size) continue;
+    Eigen::MatrixXd with_first(accepted.rows(), accepted.cols() + first_size);
+    with_first << accepted, first->effect->columns;
+    for (const auto& [name, second] : best) {
+      if (&second == first || &second == chosen || second.effect->family == first->effect->family ||
+          first_size + second.effect->columns.cols() >= size) {
+        continue;
+      }
+      const Candidate pair = evaluate(*second.effect, with_first, r0, baseline, weight, n);
+      if (pair.shrink >= as_good && pair.low > first->shrink) return first;
+    }
+  }
+  return chosen;
+}
+
 // The effect's columns of the given joints only (0-based); the same effect, narrowed.
 Effect narrowed(const Effect& e, const std::vector<int>& joints) {
   Effect out = e;
@@ -482,6 +510,7 @@ Diagnosis diagnose(const Dataset& d, const pipeline::Derivation& derivation) {
     for (const Candidate* c : order) {
       if (acceptable(c) && equal(c) && c->effect->columns.cols() < chosen->effect->columns.cols()) chosen = c;
     }
+    chosen = first_of_a_smaller_pair(chosen, order, best, acceptable, accepted, r0, baseline, weight, n);
     RankedEffect r = describe(*chosen, before, accepted.cols(), out.gap.torque_rms);
     if (r.joints.empty()) break;  // explains nothing material on any joint of its own
     if (per_joint(*chosen->effect)) {
