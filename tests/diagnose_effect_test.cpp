@@ -106,6 +106,33 @@ TEST(InjectedEffects, TwoEffectsAreEachPlacedOnTheirOwnJoint) {
   ASSERT_EQ(d.accepted_effects.size(), d.selected.size());
 }
 
+// Two effects that the whole inertial parameter set also absorbs (Kraft's rotor inertia of joint 3
+// lies in its span, and so does a payload): the two are named, each with its size, rather than
+// "inertial_parameters", which explains as much with four times the columns.
+TEST(InjectedEffects, TwoSmallEffectsAreNamedRatherThanTheInertialParameters) {
+  Injection rotor, payload;
+  rotor.effect = "rotor_inertia";
+  rotor.joint = 2;
+  rotor.size = 0.06;
+  payload.effect = "payload";
+  payload.size = 0.05;
+  const auto path = std::filesystem::path(::testing::TempDir()) / "dyncc_diagnose_rotor_payload.csv";
+  diagnose::SyntheticOptions options;
+  options.rate = 81;
+  diagnose::write_synthetic_log(kraft(), {rotor, payload}, options, path);
+  const diagnose::Dataset data = diagnose::build_dataset({diagnose::read_joint_log(path.string(), 3)}, kraft());
+  const diagnose::Diagnosis d = diagnose::diagnose(data, kraft());
+  SCOPED_TRACE(diagnose::diagnosis_text(data, d));
+  std::map<std::string, std::map<std::string, double>> by_name;
+  for (const auto& r : d.selected) {
+    for (const auto& p : r.parameters) by_name[r.effect.substr(0, r.effect.find(" or "))][p.name] = p.value;
+  }
+  ASSERT_TRUE(by_name.count("rotor_inertia") && by_name.count("payload"));
+  EXPECT_FALSE(by_name.count("inertial_parameters"));
+  EXPECT_NEAR(by_name["rotor_inertia"]["ia3"], 0.06, 0.006);
+  EXPECT_NEAR(by_name["payload"]["mass"], 0.05, 0.0015);
+}
+
 // A payload picked up and put down during the log (the paper's task): the load is named, weighed
 // within 3 %, placed at the point it was injected (5 cm along the payload link's x) and the pick-up
 // and put-down are found within a quarter second; a load held over the whole log would explain
