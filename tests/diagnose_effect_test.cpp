@@ -159,6 +159,35 @@ TEST(InjectedEffects, PayloadCarriedForAWhileIsFoundWithItsWindow) {
   EXPECT_NEAR(value["put_down_at"], 29.6, 0.25);
 }
 
+// The payload link's point Jacobian (from the kinematics' velocity propagation) against finite
+// differences of the point's position (origin + R c), and its vertical part against the lever read
+// off the energy: two derivations of the same geometry agree.
+TEST(ContactGeometry, PointJacobianIsTheGradientOfThePointAndAgreesWithTheLever) {
+  const diagnose::ContactGeometry geometry(kraft());
+  ASSERT_TRUE(geometry.valid());
+  std::mt19937 random(5);
+  std::uniform_real_distribution<double> angle(-1.5, 1.5), coordinate(-0.5, 0.5);
+  for (int trial = 0; trial < 10; ++trial) {
+    const Eigen::Vector3d q(angle(random), angle(random), angle(random));
+    const Eigen::Vector3d c(coordinate(random), coordinate(random), coordinate(random));
+    const Eigen::MatrixXd jacobian = geometry.frame(q).point_jacobian(c);
+    auto point = [&](const Eigen::VectorXd& at) {
+      const auto f = geometry.frame(at);
+      return Eigen::Vector3d(f.origin + f.rotation * c);
+    };
+    for (Eigen::Index j = 0; j < 3; ++j) {
+      const double step = 1e-6;
+      Eigen::VectorXd plus = q, minus = q;
+      plus[j] += step;
+      minus[j] -= step;
+      const Eigen::Vector3d slope = (point(plus) - point(minus)) / (2 * step);
+      EXPECT_LT((jacobian.col(j) - slope).norm(), 1e-7);
+    }
+    const Eigen::VectorXd lever = diagnose::ContactGeometry::lever(geometry.at(q), c);
+    EXPECT_LT((jacobian.transpose() * geometry.down() - lever).norm(), 1e-9);
+  }
+}
+
 // The contact effect's geometry, against finite differences: minus the torque of a unit upward
 // force on a point (read from the regressor's gravity columns) is minus the gradient of the
 // point's height (read from the potential energy), at random configurations and points.

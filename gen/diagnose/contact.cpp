@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "diagnose/effects.hpp"
+#include "sym/substitute.hpp"
 
 namespace dyncc::diagnose {
 
@@ -17,6 +18,49 @@ ContactGeometry::ContactGeometry(const pipeline::Derivation& derivation) : deriv
     columns_[k] = of[k];
   }
   link_ = link;
+  down_ = Eigen::Vector3d(gravity[0], gravity[1], gravity[2]) / g_;
+  // The link's rotation and its Jacobians (link-frame components, rotated to the base below).
+  const kin::LinkKinematics& lk = derivation.kinematics.links[static_cast<std::size_t>(link)];
+  const sym::Substitution constants = derivation.robot.constant_values();
+  std::vector<sym::Expr> outputs;
+  for (const auto& row : lk.rotation) {
+    for (const sym::Expr& e : row) outputs.push_back(sym::substitute(e, constants));
+  }
+  for (const sym::Expr& e : lk.origin) outputs.push_back(sym::substitute(e, constants));
+  for (const auto* columns : {&lk.linear, &lk.angular}) {
+    for (const kin::Vec3& v : *columns) {
+      for (const sym::Expr& e : v) outputs.push_back(sym::substitute(e, constants));
+    }
+  }
+  kinematics_ = std::make_shared<const sym::CompiledFunction>(outputs, derivation.kinematics.coordinates);
+}
+
+Eigen::MatrixXd ContactGeometry::Frame::point_jacobian(const Eigen::Vector3d& c) const {
+  Eigen::MatrixXd j(3, linear.cols());
+  for (Eigen::Index k = 0; k < linear.cols(); ++k) {
+    const Eigen::Vector3d w = angular.col(k);
+    j.col(k) = linear.col(k) + w.cross(c);
+  }
+  return rotation * j;
+}
+
+ContactGeometry::Frame ContactGeometry::frame(const Eigen::VectorXd& q) const {
+  const auto n = q.size();
+  const std::vector<double> values = (*kinematics_)(std::span<const double>(q.data(), static_cast<std::size_t>(n)));
+  Frame f;
+  for (int r = 0; r < 3; ++r) {
+    for (int c = 0; c < 3; ++c) f.rotation(r, c) = values[static_cast<std::size_t>(3 * r + c)];
+  }
+  for (int r = 0; r < 3; ++r) f.origin[r] = values[static_cast<std::size_t>(9 + r)];
+  f.linear.resize(3, n);
+  f.angular.resize(3, n);
+  for (Eigen::Index k = 0; k < n; ++k) {
+    for (Eigen::Index i = 0; i < 3; ++i) {
+      f.linear(i, k) = values[static_cast<std::size_t>(12 + 3 * k + i)];
+      f.angular(i, k) = values[static_cast<std::size_t>(12 + 3 * n + 3 * k + i)];
+    }
+  }
+  return f;
 }
 
 ContactGeometry::Basis ContactGeometry::at(const Eigen::VectorXd& q) const {

@@ -153,6 +153,21 @@ void add_point(RankedEffect& r, const std::string& total, const std::string& mom
   }
 }
 
+// A contact's friction coefficient: its friction over its normal force, from the pair (offset or
+// spring) that the fit knows better.
+void add_friction_coefficient(RankedEffect& r) {
+  std::map<std::string, FittedParameter> p;
+  for (const FittedParameter& x : r.parameters) p[x.name] = x;
+  auto known = [&](const std::string& name) { return std::abs(p[name].value) / (p[name].error + 1e-300); };
+  const bool spring = known("stiffness") > known("force");
+  const FittedParameter normal = p[spring ? "stiffness" : "force"];
+  const FittedParameter friction = p[spring ? "friction_stiffness" : "friction_force"];
+  if (normal.value == 0) return;
+  const double mu = friction.value / normal.value;
+  r.parameters.push_back(
+      {"friction_coefficient", mu, std::hypot(friction.error, mu * normal.error) / std::abs(normal.value)});
+}
+
 RankedEffect describe(const Candidate& c, const Eigen::VectorXd& before, Eigen::Index offset,
                       const Eigen::VectorXd& torque_rms) {
   RankedEffect r;
@@ -187,6 +202,7 @@ RankedEffect describe(const Candidate& c, const Eigen::VectorXd& before, Eigen::
   }
   if (e.family == "contact") {
     add_point(r, "force", "moment_");
+    add_friction_coefficient(r);
     r.parameters.push_back({"surface_height", r.profile, 0.0});
   }
   if (e.family == "payload") add_point(r, "mass", "m");
@@ -213,7 +229,7 @@ bool plausible(const RankedEffect& r, const pipeline::Derivation& derivation) {
   for (const FittedParameter& p : r.parameters) {
     const bool non_negative = p.name.rfind("fc", 0) == 0 || p.name.rfind("fv", 0) == 0 || p.name.rfind("fs", 0) == 0 ||
                               p.name == "mass" || p.name.rfind("ia", 0) == 0 || p.name == "force" ||
-                              p.name == "stiffness";
+                              p.name == "stiffness" || p.name == "damping" || p.name.rfind("friction_", 0) == 0;
     const double total = p.value + described(p.name, "fc", params.coulomb_of) +
                          described(p.name, "fv", params.viscous_of) + described(p.name, "ia", params.rotor_of);
     if (non_negative && total < -2.0 * p.error) return false;
