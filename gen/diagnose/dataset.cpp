@@ -79,6 +79,20 @@ Eigen::MatrixXd Dataset::condition(const Eigen::MatrixXd& stacked) const {
   return out;
 }
 
+Eigen::VectorXd torque_weights(const Eigen::VectorXd& torque_rms) {
+  return torque_rms.cwiseMax(1e-3 * torque_rms.maxCoeff() + 1e-12).cwiseInverse();
+}
+
+Eigen::VectorXd stacked_weights(const Eigen::VectorXd& joint_weights, Eigen::Index rows) {
+  Eigen::VectorXd w(rows);
+  for (Eigen::Index r = 0; r < rows; ++r) w[r] = joint_weights[r % joint_weights.size()];
+  return w;
+}
+
+Eigen::VectorXd analysis_torque_rms(const Dataset& d) {
+  return d.analysis_tau.array().square().colwise().mean().sqrt().transpose();
+}
+
 Dataset build_dataset(const std::vector<JointLog>& logs, const pipeline::Derivation& derivation,
                       const ConditioningOptions& options) {
   Dataset d;

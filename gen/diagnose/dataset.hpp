@@ -73,6 +73,14 @@ struct Dataset {
   [[nodiscard]] Eigen::Index rows() const { return analysis_t.size(); }
 };
 
+/// Per-joint weights that make every joint count relative to its own torque: 1 / torque RMS (floored
+/// at 1e-3 of the largest, so a joint that carries nothing does not dominate).
+Eigen::VectorXd torque_weights(const Eigen::VectorXd& torque_rms);
+/// The joint weights spread over stacked rows (row r is joint r % n).
+Eigen::VectorXd stacked_weights(const Eigen::VectorXd& joint_weights, Eigen::Index rows);
+/// The torque RMS per joint of the analysis rows' logged torque.
+Eigen::VectorXd analysis_torque_rms(const Dataset& d);
+
 /// Conditions the logs and evaluates the model. Throws LogError when a log is too short for the
 /// filter (fewer than kMinimumSamples rows left after the edges are trimmed).
 Dataset build_dataset(const std::vector<JointLog>& logs, const pipeline::Derivation& derivation,

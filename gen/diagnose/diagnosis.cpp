@@ -73,14 +73,21 @@ Candidate evaluate(const Effect& effect, const Eigen::MatrixXd& accepted, const 
   return c;
 }
 
-void measure(Candidate& c, const Eigen::VectorXd& before, const Eigen::VectorXd& torque_rms) {
+// How much a candidate explains (held out, per joint, over the torque RMS), and whether that is
+// material. On top of accepted effects, what its own columns carry in the joint fit counts too:
+// an earlier effect may have absorbed part of it (a payload's point leaning to mimic a joint's
+// torque gain), which the joint fit hands back.
+void measure(Candidate& c, const Eigen::VectorXd& before, const Eigen::VectorXd& torque_rms, Eigen::Index accepted) {
   c.explained = 0;
   c.material = 0;
-  for (Eigen::Index j = 0; j < before.size(); ++j) {
+  const Eigen::Index n = before.size(), k = c.effect->columns.cols();
+  const Eigen::VectorXd own =
+      accepted > 0 ? joint_rms(c.effect->columns * c.cv.theta.tail(k), n) : Eigen::VectorXd::Zero(n);
+  for (Eigen::Index j = 0; j < n; ++j) {
     const double gain = before[j] * before[j] - c.after[j] * c.after[j];
     const double scale = std::max(torque_rms[j], 1e-12);
     c.explained += gain / (scale * scale);
-    c.material = std::max(c.material, std::sqrt(std::max(0.0, gain)) / scale);
+    c.material = std::max({c.material, std::sqrt(std::max(0.0, gain)) / scale, own[j] / scale});
   }
 }
 
@@ -274,7 +281,7 @@ Gap locate(const Dataset& d, const Eigen::VectorXd& r, const pipeline::Derivatio
   Gap g;
   const Eigen::Index n = d.n, samples = d.rows();
   g.residual_rms = joint_rms(r, n);
-  g.torque_rms = (d.analysis_tau.array().square().colwise().mean()).sqrt().transpose();
+  g.torque_rms = analysis_torque_rms(d);
   g.percent = 100.0 * g.residual_rms.cwiseQuotient(g.torque_rms.cwiseMax(1e-12));
   g.noise_floor = Eigen::VectorXd::Zero(n);
   for (std::size_t l = 0; l < d.audits.size(); ++l) {
@@ -471,8 +478,7 @@ Diagnosis diagnose(const Dataset& d, const pipeline::Derivation& derivation) {
   const Eigen::Index n = d.n;
   const Eigen::VectorXd r0 = d.residual;
   out.gap = locate(d, r0, derivation);
-  const Eigen::VectorXd weight =
-      out.gap.torque_rms.cwiseMax(1e-3 * out.gap.torque_rms.maxCoeff() + 1e-12).cwiseInverse();
+  const Eigen::VectorXd weight = torque_weights(out.gap.torque_rms);
   out.weight = weight;
   const std::vector<Effect> effects = candidate_effects(d, derivation);
 
@@ -499,7 +505,7 @@ Diagnosis diagnose(const Dataset& d, const pipeline::Derivation& derivation) {
     order.reserve(best.size());
     for (const auto& [name, c] : best) order.push_back(&c);
     std::sort(order.begin(), order.end(), [](const Candidate* a, const Candidate* b) { return a->shrink > b->shrink; });
-    for (auto& [name, c] : best) measure(c, before, out.gap.torque_rms);
+    for (auto& [name, c] : best) measure(c, before, out.gap.torque_rms, accepted.cols());
     if (step == 0) {
       for (const Candidate* c : order) {
         out.ranking.push_back(describe(*c, before, accepted.cols(), out.gap.torque_rms));

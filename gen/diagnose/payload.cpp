@@ -40,12 +40,6 @@ Eigen::MatrixXd point_mass(const Eigen::MatrixXd& all, const Eigen::Vector3d& c)
   return out;
 }
 
-Eigen::VectorXd row_weight(const Dataset& d, const Eigen::VectorXd& joint_weight, Eigen::Index rows) {
-  Eigen::VectorXd w(rows);
-  for (Eigen::Index r = 0; r < rows; ++r) w[r] = joint_weight[r % d.n];
-  return w;
-}
-
 // Which of the first moments (x, y, z) the data resolves, from conditioned point-mass columns.
 std::array<bool, 3> resolved_axes(const Eigen::MatrixXd& columns, const Eigen::VectorXd& w) {
   const Eigen::MatrixXd a = w.asDiagonal() * columns;
@@ -63,16 +57,11 @@ std::array<bool, 3> resolved_axes(const Eigen::MatrixXd& columns, const Eigen::V
   return out;
 }
 
-Eigen::VectorXd joint_weight(const Dataset& d) {
-  const Eigen::VectorXd rms = d.analysis_tau.array().square().colwise().mean().sqrt().transpose();
-  return rms.cwiseMax(1e-3 * rms.maxCoeff() + 1e-12).cwiseInverse();
-}
-
 // The point of a load from conditioned standard columns: fixed-point passes of the weighted fit,
 // along the resolved axes (the others stay 0).
 Eigen::Vector3d load_point(const Dataset& d, const Eigen::MatrixXd& conditioned, const Eigen::VectorXd& weight,
                            const std::array<bool, 3>& resolved) {
-  const Eigen::VectorXd w = row_weight(d, weight, conditioned.rows());
+  const Eigen::VectorXd w = stacked_weights(weight, conditioned.rows());
   Eigen::Vector3d c = Eigen::Vector3d::Zero();
   for (int pass = 0; pass < kPointPasses; ++pass) {
     Eigen::MatrixXd a = w.asDiagonal() * point_mass(conditioned, c);
@@ -122,10 +111,10 @@ Effect payload_effect(const Eigen::MatrixXd& conditioned, const Eigen::Vector3d&
 void add_payload_effects(const Dataset& d, const pipeline::Derivation& derivation, std::vector<Effect>& out) {
   const Eigen::MatrixXd all = standard_columns(d, derivation);
   if (all.size() == 0) return;
-  const Eigen::VectorXd weight = joint_weight(d);
+  const Eigen::VectorXd weight = torque_weights(analysis_torque_rms(d));
   const Eigen::MatrixXd conditioned = d.condition(all);
   const auto resolved =
-      resolved_axes(point_mass(conditioned, Eigen::Vector3d::Zero()), row_weight(d, weight, conditioned.rows()));
+      resolved_axes(point_mass(conditioned, Eigen::Vector3d::Zero()), stacked_weights(weight, conditioned.rows()));
   out.push_back(payload_effect(conditioned, load_point(d, conditioned, weight, resolved), resolved));
 
   const auto window = find_payload_window(d, out.back().columns, d.residual, weight);

@@ -12,6 +12,9 @@ constexpr int kRefinePasses = 3;          // edge-by-edge refinement at single r
 // A load carried for a shorter share of the log could sit inside one held-out fold (a fifth of
 // the log), where nothing trained on the other folds can check it.
 constexpr double kShortestShare = 0.3;
+// And a load put down (or picked up) within the last (first) tenth of a log is a load carried
+// throughout as far as the data can tell: the constant payload.
+constexpr double kShortestUnloaded = 0.1;
 
 // Running sums over the analysis rows of one log: the normal equations of any window are two
 // differences.
@@ -64,8 +67,9 @@ std::optional<PayloadWindow> find_payload_window(const Dataset& d, const Eigen::
     if (step >= 2) {
       const WindowFits fits(d, columns, residual, weight, begin, end);
       const auto shortest = static_cast<Eigen::Index>(kShortestShare * static_cast<double>(length));
+      const auto unloaded = static_cast<Eigen::Index>(kShortestUnloaded * static_cast<double>(length));
       auto allowed = [&](Eigen::Index a, Eigen::Index b) {
-        return a >= begin && b <= end && b - a >= shortest && !(a == begin && b == end);
+        return a >= begin && b <= end && b - a >= shortest && (a - begin) + (end - b) >= unloaded;
       };
       Eigen::Index a_best = -1, b_best = -1;
       double value = -1;
