@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 
 #include "diagnose/contact.hpp"
 #include "diagnose/payload.hpp"
@@ -13,6 +14,26 @@ namespace {
 
 constexpr double kStribeckScales[] = {0.02, 0.03, 0.045, 0.065, 0.1, 0.15, 0.22, 0.33, 0.5};  // rad/s, geometric
 constexpr double kTorqueSignScale = 0.05;  // N m, smoothed sign of the torque (backlash)
+
+// The smallest Stribeck velocity scale the data resolves on each joint. A static excess over the
+// scale vs lasts about 2 vs / |qdd| around a reversal; once that is shorter than the filter's time
+// scale, 1 / (2 pi cutoff), the excess is smeared into the same shape as any other mismatch at
+// reversals (where the velocity estimate crosses zero a little early or late), so it is not
+// evidence of a Stribeck effect. |qdd| is its median where the joint is slow.
+Eigen::VectorXd resolved_stribeck_scale(const Dataset& d) {
+  Eigen::VectorXd out = Eigen::VectorXd::Zero(d.n);
+  for (Eigen::Index j = 0; j < d.n; ++j) {
+    const double typical = d.qd.col(j).cwiseAbs().mean();
+    std::vector<double> slow;
+    for (Eigen::Index s = 0; s < d.samples(); ++s) {
+      if (std::abs(d.qd(s, j)) < 0.1 * typical) slow.push_back(std::abs(d.qdd(s, j)));
+    }
+    if (slow.empty()) continue;
+    std::nth_element(slow.begin(), slow.begin() + static_cast<std::ptrdiff_t>(slow.size() / 2), slow.end());
+    out[j] = 0.5 * slow[slow.size() / 2] / (2 * std::numbers::pi * d.cutoff);
+  }
+  return out;
+}
 
 // One column per joint, nonzero only in that joint's rows: value(s, j).
 template <typename F>
@@ -204,11 +225,13 @@ std::vector<Effect> candidate_effects(const Dataset& d, const pipeline::Derivati
                           [&](Eigen::Index s, Eigen::Index j) { return d.qd(s, j); }));
   // Stribeck: Coulomb plus a static excess that fades with speed; with its Coulomb column it is a
   // superset of coulomb_friction, so it wins only when the fading is in the data.
+  const Eigen::VectorXd resolved = resolved_stribeck_scale(d);
   for (const double vs : kStribeckScales) {
+    if ((resolved.array() > vs).all()) continue;  // no joint resolves this scale
     Effect e = per_joint(d, "stribeck_friction", "fc", Reading::as_is,
                          [&](Eigen::Index s, Eigen::Index j) { return smooth_sign(d.qd(s, j)); });
     const Effect excess = per_joint(d, "stribeck_friction", "fs", Reading::as_is, [&](Eigen::Index s, Eigen::Index j) {
-      return stribeck_fade(d.qd(s, j), vs) * smooth_sign(d.qd(s, j));
+      return vs >= resolved[j] ? stribeck_fade(d.qd(s, j), vs) * smooth_sign(d.qd(s, j)) : 0.0;
     });
     Eigen::MatrixXd both(rows, 2 * d.n);
     both << e.columns, excess.columns;
