@@ -230,10 +230,9 @@ Case make_case(const char* effect, int joint, double size, const char* parameter
 
 std::vector<Case> cases() {
   return {make_case("none", 0, 0.0, "", 0), make_case("coulomb_friction", 1, 0.15, "fc2", 0.1),
-          make_case("viscous_friction", 2, 0.4, "fv3", 0.1),
-          make_case("stribeck_friction", 1, 0.2, "fs2", 0.1), make_case("payload", 0, 0.3, "mass", 0.03),
-          make_case("torque_gain", 1, 1.15, "gain2", 0.1), make_case("sensor_delay", 0, 0.03, "delay", 0.005),
-          make_case("position_offset", 1, 0.1, "offset2", 0.1),
+          make_case("viscous_friction", 2, 0.4, "fv3", 0.1), make_case("stribeck_friction", 1, 0.2, "fs2", 0.1),
+          make_case("payload", 0, 0.3, "mass", 0.03), make_case("torque_gain", 1, 1.15, "gain2", 0.1),
+          make_case("sensor_delay", 0, 0.03, "delay", 0.005), make_case("position_offset", 1, 0.1, "offset2", 0.1),
           // 0.19 rad: beyond the tangent's reach (read as 0.23 before the columns were re-linearised)
           make_case("position_offset", 2, 0.19, "offset3", 0.02), make_case("contact", 0, 20.0, "", 0)};
 }

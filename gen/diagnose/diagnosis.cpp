@@ -521,49 +521,77 @@ Diagnosis diagnose(const Dataset& d, const pipeline::Derivation& derivation) {
     // explains beyond the other is immaterial (below kMaterial of the torque RMS); of acceptable
     // equals the fewest columns win, and equals whose columns do not contain the chosen ones are
     // alternatives ("A or B") when they are acceptable on their own.
-    const auto first = std::find_if(order.begin(), order.end(), acceptable);
-    if (first == order.end()) break;
-    const Candidate* top = *first;
+    // The joints of a per-joint effect where it IS: a joint whose part another per-joint effect
+    // explains better on its own (viscous friction of joint 3 that Coulomb columns of joint 3 half
+    // absorb) is left for that effect's turn; the columns of the remaining joints are accepted.
+    auto own_joints_of = [&](const Candidate& chosen, const RankedEffect& r) {
+      std::vector<int> kept;
+      for (const int joint : r.joints) {
+        const double own = evaluate(narrowed(*chosen.effect, {joint - 1}), accepted, r0, baseline, weight, n).shrink;
+        bool beaten = false;
+        for (const Effect& e : effects) {
+          if (beaten || e.family == chosen.effect->family || !per_joint(e) ||
+              std::find(taken.begin(), taken.end(), e.family) != taken.end()) {
+            continue;
+          }
+          const Effect theirs = narrowed(e, {joint - 1});
+          const Candidate other = evaluate(theirs, accepted, r0, baseline, weight, n);
+          beaten = other.shrink > own + kAcceptShrink * own + 0.01 && other.low > 0.0 &&
+                   plausible(describe(other, before, accepted.cols(), out.gap.torque_rms), derivation);
+        }
+        if (!beaten) kept.push_back(joint - 1);
+      }
+      return kept;
+    };
+    // The leading candidate, then parsimony; one that turns out to explain nothing of its own
+    // (no joint left once narrowed) gives way to the next acceptable one.
+    std::vector<const Candidate*> rejected;
+    auto usable = [&](const Candidate* c) {
+      return acceptable(c) && std::find(rejected.begin(), rejected.end(), c) == rejected.end();
+    };
+    const Candidate* chosen = nullptr;
+    const Candidate* top = nullptr;
+    RankedEffect r;
+    while (chosen == nullptr) {
+      const auto first = std::find_if(order.begin(), order.end(), usable);
+      if (first == order.end()) break;
+      top = *first;
+      const Candidate* pick = top;
+      for (const Candidate* c : order) {
+        const bool as_good = c->explained >= top->explained - kMaterial * kMaterial ||
+                             c->shrink >= top->shrink - 0.5 * (top->high - top->low);
+        if (usable(c) && as_good && c->effect->columns.cols() < pick->effect->columns.cols()) pick = c;
+      }
+      pick = first_of_a_smaller_pair(pick, order, best, usable, accepted, r0, baseline, weight, n);
+      r = describe(*pick, before, accepted.cols(), out.gap.torque_rms);
+      if (!r.joints.empty() && per_joint(*pick->effect)) {
+        const std::vector<int> kept = own_joints_of(*pick, r);
+        if (kept.empty()) {
+          r.joints.clear();
+        } else {
+          narrowed_effects.push_back(narrowed(*pick->effect, kept));
+          narrowed_candidates.push_back(evaluate(narrowed_effects.back(), accepted, r0, baseline, weight, n));
+          r = describe(narrowed_candidates.back(), before, accepted.cols(), out.gap.torque_rms);
+          if (!r.joints.empty()) {
+            rejected.push_back(pick);  // the un-narrowed one is not an alternative of its narrowed self
+            pick = &narrowed_candidates.back();
+          }
+        }
+      }
+      if (r.joints.empty()) {
+        rejected.push_back(pick);  // explains nothing material on any joint of its own
+        continue;
+      }
+      chosen = pick;
+    }
+    if (chosen == nullptr) break;
     auto equal = [&](const Candidate* c) {
       return c->explained >= top->explained - kMaterial * kMaterial ||
              c->shrink >= top->shrink - 0.5 * (top->high - top->low);
     };
-    const Candidate* chosen = top;
-    for (const Candidate* c : order) {
-      if (acceptable(c) && equal(c) && c->effect->columns.cols() < chosen->effect->columns.cols()) chosen = c;
-    }
-    chosen = first_of_a_smaller_pair(chosen, order, best, acceptable, accepted, r0, baseline, weight, n);
-    RankedEffect r = describe(*chosen, before, accepted.cols(), out.gap.torque_rms);
-    if (r.joints.empty()) break;  // explains nothing material on any joint of its own
-    if (per_joint(*chosen->effect)) {
-      // Only the joints where it IS: a joint whose part another per-joint effect explains better on
-      // its own (viscous friction of joint 3 that Coulomb columns of joint 3 half absorb) is left
-      // for that effect's turn; the columns of the remaining joints are what is accepted.
-      std::vector<int> kept;
-      for (const int joint : r.joints) {
-        const Effect mine = narrowed(*chosen->effect, {joint - 1});
-        const double own = evaluate(mine, accepted, r0, baseline, weight, n).shrink;
-        bool beaten = false;
-        for (const Effect& e : effects) {
-          if (beaten || e.family == chosen->effect->family || !per_joint(e) ||
-              std::find(taken.begin(), taken.end(), e.family) != taken.end()) {
-            continue;
-          }
-          Candidate other = evaluate(narrowed(e, {joint - 1}), accepted, r0, baseline, weight, n);
-          beaten = other.shrink > own + kAcceptShrink * own + 0.01 && other.low > 0.0;
-        }
-        if (!beaten) kept.push_back(joint - 1);
-      }
-      if (kept.empty()) break;
-      narrowed_effects.push_back(narrowed(*chosen->effect, kept));
-      narrowed_candidates.push_back(evaluate(narrowed_effects.back(), accepted, r0, baseline, weight, n));
-      chosen = &narrowed_candidates.back();
-      r = describe(*chosen, before, accepted.cols(), out.gap.torque_rms);
-      if (r.joints.empty()) break;
-    }
     r.accepted = true;
     for (const Candidate* c : order) {
-      if (c == chosen || !acceptable(c) || !equal(c)) continue;
+      if (c == chosen || !usable(c) || !equal(c)) continue;
       if (spans(c->effect->columns, chosen->effect->columns)) continue;  // a superset: the same explanation
       if (c->effect->columns.cols() > 2 * chosen->effect->columns.cols()) continue;
       r.effect += " or " + c->effect->name;
