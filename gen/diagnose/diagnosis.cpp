@@ -385,12 +385,12 @@ const Candidate* first_of_a_smaller_pair(const Candidate* chosen, const std::vec
 }
 
 // The effect's columns of the given joints only (0-based); the same effect, narrowed.
-Effect narrowed(const Effect& e, const std::vector<int>& joints) {
+template <typename Keep>
+Effect kept_columns(const Effect& e, Keep keep_column) {
   Effect out = e;
   std::vector<Eigen::Index> keep;
   for (std::size_t k = 0; k < e.joint_of.size(); ++k) {
-    if (std::find(joints.begin(), joints.end(), e.joint_of[k]) != joints.end())
-      keep.push_back(static_cast<Eigen::Index>(k));
+    if (keep_column(k)) keep.push_back(static_cast<Eigen::Index>(k));
   }
   out.columns.resize(e.columns.rows(), static_cast<Eigen::Index>(keep.size()));
   out.parameters.clear();
@@ -404,6 +404,26 @@ Effect narrowed(const Effect& e, const std::vector<int>& joints) {
     out.reading.push_back(e.reading[k]);
   }
   return out;
+}
+
+Effect narrowed(const Effect& e, const std::vector<int>& joints) {
+  return kept_columns(e, [&](std::size_t k) {
+    return std::find(joints.begin(), joints.end(), e.joint_of[k]) != joints.end();
+  });
+}
+
+// A joint's column that is already in the fit under the same name (a Stribeck's fc2 once Coulomb's
+// fc2 is accepted) is left out: the two would split one value between them.
+bool shares_fitted(const Effect& e, const std::vector<std::string>& fitted) {
+  for (std::size_t k = 0; k < e.parameters.size(); ++k) {
+    if (e.joint_of[k] >= 0 && std::find(fitted.begin(), fitted.end(), e.parameters[k]) != fitted.end()) return true;
+  }
+  return false;
+}
+Effect without_fitted(const Effect& e, const std::vector<std::string>& fitted) {
+  return kept_columns(e, [&](std::size_t k) {
+    return e.joint_of[k] < 0 || std::find(fitted.begin(), fitted.end(), e.parameters[k]) == fitted.end();
+  });
 }
 
 // Once every effect is in: all of them fitted together, each per-joint effect narrowed once more
@@ -487,12 +507,20 @@ Diagnosis diagnose(const Dataset& d, const pipeline::Derivation& derivation) {
   Eigen::MatrixXd accepted(r0.size(), 0);
   Eigen::VectorXd baseline = r0;  // held-out residual of the model so far
   std::vector<std::string> taken;
+  std::vector<std::string> fitted;  // the per-joint parameters accepted so far ("fc2", ...)
   for (int step = 0; step < kMaxEffects; ++step) {
     // Every remaining candidate on top of what is accepted; the best profile point per effect.
     std::map<std::string, Candidate> best;
     const Eigen::VectorXd before = joint_rms(baseline, n);
-    for (const Effect& e : effects) {
-      if (std::find(taken.begin(), taken.end(), e.family) != taken.end()) continue;
+    for (const Effect& whole : effects) {
+      if (std::find(taken.begin(), taken.end(), whole.family) != taken.end()) continue;
+      const Effect* use = &whole;
+      if (shares_fitted(whole, fitted)) {
+        narrowed_effects.push_back(without_fitted(whole, fitted));
+        use = &narrowed_effects.back();
+        if (use->columns.cols() == 0) continue;
+      }
+      const Effect& e = *use;
       Candidate c = evaluate(e, accepted, r0, baseline, weight, n);
       c.plausible = plausible(describe(c, before, accepted.cols(), out.gap.torque_rms), derivation);
       auto it = best.find(e.name);
@@ -524,19 +552,28 @@ Diagnosis diagnose(const Dataset& d, const pipeline::Derivation& derivation) {
     // The joints of a per-joint effect where it IS: a joint whose part another per-joint effect
     // explains better on its own (viscous friction of joint 3 that Coulomb columns of joint 3 half
     // absorb) is left for that effect's turn; the columns of the remaining joints are accepted.
+    // ... and a joint that a simpler per-joint effect (fewer columns there: Coulomb against
+    // Stribeck) explains as well is left for that one: a Coulomb friction of joint 2 is not a
+    // Stribeck friction of joints 2 and 5 because joint 5 has one.
     auto own_joints_of = [&](const Candidate& chosen, const RankedEffect& r) {
       std::vector<int> kept;
       for (const int joint : r.joints) {
-        const double own = evaluate(narrowed(*chosen.effect, {joint - 1}), accepted, r0, baseline, weight, n).shrink;
+        const Effect mine_effect = narrowed(*chosen.effect, {joint - 1});
+        const Candidate mine = evaluate(mine_effect, accepted, r0, baseline, weight, n);
+        const double own = mine.shrink;
         bool beaten = false;
         for (const Effect& e : effects) {
           if (beaten || e.family == chosen.effect->family || !per_joint(e) ||
               std::find(taken.begin(), taken.end(), e.family) != taken.end()) {
             continue;
           }
-          const Effect theirs = narrowed(e, {joint - 1});
+          const Effect theirs = without_fitted(narrowed(e, {joint - 1}), fitted);
+          if (theirs.columns.cols() == 0) continue;
           const Candidate other = evaluate(theirs, accepted, r0, baseline, weight, n);
-          beaten = other.shrink > own + kAcceptShrink * own + 0.01 && other.low > 0.0 &&
+          const bool better = other.shrink > own + kAcceptShrink * own + 0.01;
+          const bool simpler_and_as_good =
+              theirs.columns.cols() < mine_effect.columns.cols() && other.shrink >= own - 0.5 * (mine.high - mine.low);
+          beaten = (better || simpler_and_as_good) && other.low > 0.0 &&
                    plausible(describe(other, before, accepted.cols(), out.gap.torque_rms), derivation);
         }
         if (!beaten) kept.push_back(joint - 1);
@@ -572,10 +609,18 @@ Diagnosis diagnose(const Dataset& d, const pipeline::Derivation& derivation) {
           narrowed_effects.push_back(narrowed(*pick->effect, kept));
           narrowed_candidates.push_back(evaluate(narrowed_effects.back(), accepted, r0, baseline, weight, n));
           r = describe(narrowed_candidates.back(), before, accepted.cols(), out.gap.torque_rms);
-          if (!r.joints.empty()) {
-            rejected.push_back(pick);  // the un-narrowed one is not an alternative of its narrowed self
-            pick = &narrowed_candidates.back();
-          }
+          rejected.push_back(pick);  // the un-narrowed one is not an alternative of its narrowed self
+          // Narrowed, it may explain less than the next candidate of another kind, which then
+          // leads (the order of the steps is the order of what each explains on its own joints).
+          const Candidate& mine = narrowed_candidates.back();
+          // (Clearly less: not within the fold spread, and not against a superset of itself, a
+          // Stribeck friction against its own Coulomb part.)
+          const auto next = std::find_if(order.begin(), order.end(), [&](const Candidate* c) {
+            return usable(c) && c->effect->family != pick->effect->family &&
+                   !spans(c->effect->columns, mine.effect->columns);
+          });
+          if (next != order.end() && (*next)->shrink > mine.shrink + 0.5 * (mine.high - mine.low) + 0.01) continue;
+          pick = &mine;
         }
       }
       if (r.joints.empty()) {
@@ -599,7 +644,11 @@ Diagnosis diagnose(const Dataset& d, const pipeline::Derivation& derivation) {
     out.selected.push_back(r);
     out.accepted_effects.push_back(*chosen->effect);
     taken.push_back(chosen->effect->family);
-    if (chosen->effect->family == "stribeck_friction") taken.emplace_back("coulomb_friction");
+    for (std::size_t k = 0; k < chosen->effect->parameters.size(); ++k) {
+      if (chosen->effect->joint_of[k] >= 0) fitted.push_back(chosen->effect->parameters[k]);
+    }
+    // (Coulomb friction stays a candidate after Stribeck: on a Stribeck joint its column is
+    // already in the fit and explains nothing more; on another joint it may be the effect.)
     Eigen::MatrixXd grown(r0.size(), accepted.cols() + chosen->effect->columns.cols());
     grown << accepted, chosen->effect->columns;
     accepted = grown;

@@ -9,11 +9,14 @@
 
 #include "diagnose/contact.hpp"
 #include "diagnose/effects.hpp"
+#include "diagnose/signals.hpp"
 
 namespace dyncc::diagnose {
 namespace {
 
-constexpr double kStribeckVelocity = 0.1;  // rad/s: the injected static excess fades over this
+constexpr double kStribeckVelocity = 0.1;
+constexpr double kDiagnosisCutoff =
+    4.0;  // Hz, the diagnosis' low-pass at the bench's rates  // rad/s: the injected static excess fades over this
 constexpr int kHarmonics = 4;
 constexpr double kBaseFrequency = 0.1;  // Hz
 
@@ -173,8 +176,10 @@ EffectSize effect_size(const pipeline::Derivation& d, const std::vector<Injectio
   const Excitation& ex = scene.excitation;
   const Eigen::VectorXd& nominal = scene.nominal;
   const Eigen::VectorXd& loaded = scene.loaded;
-  EffectSize out{Eigen::VectorXd::Zero(n), Eigen::VectorXd::Zero(n)};
+  // As the diagnosis sees them: through its zero-phase low-pass (a Stribeck pulse at a reversal
+  // and a Coulomb step lose different shares of their RMS to it).
   const int samples = 2000;
+  Eigen::MatrixXd clean(samples, n), change(samples, n);
   for (int i = 0; i < samples; ++i) {
     const double t = o.duration * i / samples;
     const Sample s = sample(d, effects, ex, nominal, carried(o, t) ? loaded : nominal, scene.surface, t);
@@ -183,11 +188,17 @@ EffectSize effect_size(const pipeline::Derivation& d, const std::vector<Injectio
     ex.at(t, q, qd, qdd);
     Eigen::VectorXd lq = s.logged_q;
     const Eigen::VectorXd model_at_logged = d.numeric->evaluate({lq, qd, qd, qdd}, nominal, false).tau;
-    out.clean_rms += s.clean_tau.cwiseAbs2();
-    out.effect_rms += (s.logged_tau - model_at_logged).cwiseAbs2();
+    clean.row(i) = s.clean_tau.transpose();
+    change.row(i) = (s.logged_tau - model_at_logged).transpose();
   }
-  out.clean_rms = (out.clean_rms / samples).cwiseSqrt();
-  out.effect_rms = (out.effect_rms / samples).cwiseSqrt();
+  const double rate = samples / o.duration, cutoff = std::min(rate / 8, kDiagnosisCutoff);
+  EffectSize out{Eigen::VectorXd::Zero(n), Eigen::VectorXd::Zero(n)};
+  for (Eigen::Index j = 0; j < n; ++j) {
+    const Eigen::VectorXd c = zero_phase_lowpass(clean.col(j), cutoff, rate);
+    const Eigen::VectorXd e = zero_phase_lowpass(change.col(j), cutoff, rate);
+    out.clean_rms[j] = std::sqrt(c.squaredNorm() / samples);
+    out.effect_rms[j] = std::sqrt(e.squaredNorm() / samples);
+  }
   return out;
 }
 

@@ -42,7 +42,8 @@ std::vector<std::string> injectable_effects();
 bool acts_on_one_joint(const std::string& effect);
 
 /// Per-joint RMS of the torque the effects add (or, for gain/delay/offset, change), and of the
-/// clean model torque, over the trajectory (no noise, no quantisation).
+/// clean model torque, over the trajectory (no noise, no quantisation), through the diagnosis'
+/// low-pass: as the diagnosis sees them.
 struct EffectSize {
   Eigen::VectorXd clean_rms, effect_rms;
 };
