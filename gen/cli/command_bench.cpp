@@ -247,6 +247,29 @@ std::string score_tables(const std::map<std::string, Score>& by_size, const std:
 
 }  // namespace
 
+// A payload is carried over the whole log, from a pick-up to a put-down, or from a pick-up on (a
+// generator of its own, seeded by the case: the draws of the cases stay as they were).
+void draw_carrying(diagnose::SyntheticOptions& so) {
+  std::mt19937 carrying(so.seed);
+  std::uniform_real_distribution<double> share(0.0, 1.0);
+  const unsigned mode = carrying() % 3;
+  if (mode > 0) so.payload_on = so.duration * (0.15 + 0.25 * share(carrying));
+  if (mode == 1) so.payload_off = so.duration * (0.6 + 0.3 * share(carrying));
+}
+
+// What the diagnosis must not read: the injected effects and where a log came from.
+nlohmann::json truth_json(const Case& k, const diagnose::SyntheticOptions& so, bool closed) {
+  nlohmann::json truth = {{"arm", k.arm},   {"plant", k.plant},       {"trajectory", k.trajectory},
+                          {"rate", k.rate}, {"fraction", k.fraction}, {"effects", nlohmann::json::array()}};
+  for (const auto& e : k.effects) {
+    truth["effects"].push_back({{"effect", e.effect}, {"joint", e.joint + 1}, {"size", e.size}});
+    if (e.effect == "payload" && !closed && so.payload_on > 0) truth["effects"].back()["picked_up_at"] = so.payload_on;
+    if (e.effect == "payload" && !closed && so.payload_off < so.duration)
+      truth["effects"].back()["put_down_at"] = so.payload_off;
+  }
+  return truth;
+}
+
 int run_sim2real_bench(const BenchOptions& o) {
   const std::vector<std::string> arms = o.arms;
   std::map<std::string, std::unique_ptr<pipeline::Derivation>> derived;
@@ -283,14 +306,7 @@ int run_sim2real_bench(const BenchOptions& o) {
     so.rate = k.rate;
     so.seed = o.seed * 1000U + static_cast<unsigned>(c);
     so.duration = 40;
-    {  // A payload is carried over the whole log, from a pick-up to a put-down, or from a pick-up on
-       // (a generator of its own: the draws of the cases stay as they were).
-      std::mt19937 carrying(so.seed);
-      std::uniform_real_distribution<double> share(0.0, 1.0);
-      const unsigned mode = carrying() % 3;
-      if (mode > 0) so.payload_on = so.duration * (0.15 + 0.25 * share(carrying));
-      if (mode == 1) so.payload_off = so.duration * (0.6 + 0.3 * share(carrying));
-    }
+    draw_carrying(so);
     const bool closed = o.closed_loop && k.arm == "kraft" && k.rate >= 200;
     if (closed) {  // alternate the plants, and the trajectories every second time
       const int turn = c / static_cast<int>(arms.size());
@@ -366,16 +382,7 @@ int run_sim2real_bench(const BenchOptions& o) {
     } else {
       diagnose::write_synthetic_log(d, k.effects, so, dir / "log.csv");
     }
-    nlohmann::json truth = {{"arm", k.arm},   {"plant", k.plant},       {"trajectory", k.trajectory},
-                            {"rate", k.rate}, {"fraction", k.fraction}, {"effects", nlohmann::json::array()}};
-    for (const auto& e : k.effects) {
-      truth["effects"].push_back({{"effect", e.effect}, {"joint", e.joint + 1}, {"size", e.size}});
-      if (e.effect == "payload" && !closed && so.payload_on > 0)
-        truth["effects"].back()["picked_up_at"] = so.payload_on;
-      if (e.effect == "payload" && !closed && so.payload_off < so.duration)
-        truth["effects"].back()["put_down_at"] = so.payload_off;
-    }
-    std::ofstream(dir / "truth.json") << truth.dump(2) << "\n";
+    std::ofstream(dir / "truth.json") << truth_json(k, so, closed).dump(2) << "\n";
 
     // The diagnosis as its own process, on the log alone.
     const std::string command =

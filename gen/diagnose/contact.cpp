@@ -47,19 +47,13 @@ Eigen::MatrixXd ContactGeometry::Frame::point_jacobian(const Eigen::Vector3d& c)
 ContactGeometry::Frame ContactGeometry::frame(const Eigen::VectorXd& q) const {
   const auto n = q.size();
   const std::vector<double> values = (*kinematics_)(std::span<const double>(q.data(), static_cast<std::size_t>(n)));
+  // The outputs in their order: rotation (row-major), origin, then per coordinate linear and angular.
+  const Eigen::Map<const Eigen::VectorXd> out(values.data(), static_cast<Eigen::Index>(values.size()));
   Frame f;
-  for (int r = 0; r < 3; ++r) {
-    for (int c = 0; c < 3; ++c) f.rotation(r, c) = values[static_cast<std::size_t>(3 * r + c)];
-  }
-  for (int r = 0; r < 3; ++r) f.origin[r] = values[static_cast<std::size_t>(9 + r)];
-  f.linear.resize(3, n);
-  f.angular.resize(3, n);
-  for (Eigen::Index k = 0; k < n; ++k) {
-    for (Eigen::Index i = 0; i < 3; ++i) {
-      f.linear(i, k) = values[static_cast<std::size_t>(12 + 3 * k + i)];
-      f.angular(i, k) = values[static_cast<std::size_t>(12 + 3 * n + 3 * k + i)];
-    }
-  }
+  f.rotation = Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(values.data());
+  f.origin = out.segment<3>(9);
+  f.linear = Eigen::Map<const Eigen::MatrixXd>(values.data() + 12, 3, n);
+  f.angular = Eigen::Map<const Eigen::MatrixXd>(values.data() + 12 + 3 * n, 3, n);
   return f;
 }
 
