@@ -27,10 +27,12 @@ struct DynccRun {
   std::string errors;  // stderr
 };
 
-/// Runs `dyncc ARGUMENTS` (already quoted as needed) with stdout discarded and stderr captured.
-inline DynccRun run_dyncc(const std::string& arguments) {
+/// Runs `dyncc ARGUMENTS` (already quoted as needed) with stdout discarded and stderr captured;
+/// killed after `seconds` (a hang is a failure; a run of many logs, under the sanitizers and beside
+/// other tests, may need more than the default).
+inline DynccRun run_dyncc(const std::string& arguments, int seconds = 120) {
   // `timeout` turns a hang into a failure; 2>&1 first sends stderr to the pipe, then stdout away.
-  std::string command = "timeout 120 ";
+  std::string command = "timeout " + std::to_string(seconds) + " ";
   command.append(quoted(DYNCC_BINARY)).append(" ").append(arguments).append(" 2>&1 1>/dev/null");
   DynccRun run;
   FILE* pipe = popen(command.c_str(), "r");

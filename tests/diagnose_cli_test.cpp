@@ -38,8 +38,11 @@ TEST(DiagnoseCommand, BadInputExitsTwoAndNamesThePlace) {
 // the keys, and a log without effects is not diagnosed with one.
 TEST(Sim2RealBench, WritesTruthApartAndDiagnosesEachLog) {
   const auto out = output_path("bench");
-  const DynccRun run = run_dyncc("sim2real-bench --cases 3 --seed 5 --arms kraft --robots " +
-                                 quoted(std::filesystem::path(DYNCC_SOURCE_DIR) / "robots") + " --out " + quoted(out));
+  // Three logs, each simulated (closed loop) and diagnosed: minutes under the sanitizers.
+  const DynccRun run =
+      run_dyncc("sim2real-bench --cases 3 --seed 5 --arms kraft --robots " +
+                    quoted(std::filesystem::path(DYNCC_SOURCE_DIR) / "robots") + " --out " + quoted(out),
+                600);
   ASSERT_EQ(run.exit_code, 0) << run.errors;
   for (int c = 0; c < 3; ++c) {
     const auto dir = out / ("case00" + std::to_string(c));

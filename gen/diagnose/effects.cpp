@@ -84,8 +84,8 @@ Effect through_sensitivity(const Dataset& d, const std::string& name, const std:
 // two-dimensional profile (point along the link's x and z axes, height at quantiles of z_c). The
 // friction columns carry mu f0 and mu k (sliding needs the point's horizontal velocity: the
 // link's Jacobian).
-constexpr double kContactPoints[] = {-1.0, -0.5, 0.0, 0.5, 1.0, 1.5};             // times the arm's scale
-constexpr double kContactQuantiles[] = {0.005, 0.01, 0.02, 0.05, 0.1, 0.2, 0.3};  // of the point's height
+constexpr double kContactPoints[] = {-1.0, -0.5, 0.0, 0.5, 1.0, 1.5};  // times the arm's scale
+constexpr double kContactQuantiles[] = {0.02, 0.05, 0.1, 0.2, 0.3};    // of the point's height
 constexpr double kSlipVelocity = 0.005;  // m/s: slower sliding is not resolved (friction turns over)
 
 void add_contact_effects(const Dataset& d, const pipeline::Derivation& derivation, std::vector<Effect>& out) {
