@@ -6,6 +6,7 @@
 #include <cmath>
 #include <map>
 #include <random>
+#include <type_traits>
 
 #include "diagnose/contact.hpp"
 #include "diagnose/dataset.hpp"
@@ -159,6 +160,17 @@ TEST(InjectedEffects, PayloadCarriedForAWhileIsFoundWithItsWindow) {
   EXPECT_NEAR(value["put_down_at"], 29.6, 0.25);
 }
 
+// d f / d q_j by a central difference.
+template <typename F>
+auto central_difference(F f, const Eigen::VectorXd& q, Eigen::Index j) {
+  using Value = std::decay_t<decltype(f(q))>;  // evaluated: no Eigen expression of temporaries escapes
+  const double step = 1e-6;
+  Eigen::VectorXd plus = q, minus = q;
+  plus[j] += step;
+  minus[j] -= step;
+  return Value((f(plus) - f(minus)) / (2 * step));
+}
+
 // The payload link's point Jacobian (from the kinematics' velocity propagation) against finite
 // differences of the point's position (origin + R c), and its vertical part against the lever read
 // off the energy: two derivations of the same geometry agree.
@@ -176,11 +188,7 @@ TEST(ContactGeometry, PointJacobianIsTheGradientOfThePointAndAgreesWithTheLever)
       return Eigen::Vector3d(f.origin + f.rotation * c);
     };
     for (Eigen::Index j = 0; j < 3; ++j) {
-      const double step = 1e-6;
-      Eigen::VectorXd plus = q, minus = q;
-      plus[j] += step;
-      minus[j] -= step;
-      const Eigen::Vector3d slope = (point(plus) - point(minus)) / (2 * step);
+      const Eigen::Vector3d slope = central_difference(point, q, j);
       EXPECT_LT((jacobian.col(j) - slope).norm(), 1e-7);
     }
     const Eigen::VectorXd lever = diagnose::ContactGeometry::lever(geometry.at(q), c);
@@ -201,13 +209,8 @@ TEST(ContactGeometry, LeverIsMinusTheGradientOfTheHeight) {
     const Eigen::Vector3d c(coordinate(random), coordinate(random), coordinate(random));
     const Eigen::VectorXd lever = diagnose::ContactGeometry::lever(geometry.at(q), c);
     for (Eigen::Index j = 0; j < 3; ++j) {
-      const double step = 1e-6;
-      Eigen::VectorXd plus = q, minus = q;
-      plus[j] += step;
-      minus[j] -= step;
-      const double slope = (diagnose::ContactGeometry::height(geometry.at(plus), c) -
-                            diagnose::ContactGeometry::height(geometry.at(minus), c)) /
-                           (2 * step);
+      const double slope = central_difference(
+          [&](const Eigen::VectorXd& at) { return diagnose::ContactGeometry::height(geometry.at(at), c); }, q, j);
       EXPECT_NEAR(lever[j], -slope, 1e-7);
     }
   }
