@@ -25,7 +25,6 @@ struct Candidate {
   const Effect* effect = nullptr;
   CrossValidation cv;
   double shrink = 0, low = 0, high = 0;
-  std::vector<double> folds;  // shrink per held-out fold
   Eigen::VectorXd after;
   double explained = 0;   // sum over joints of (before^2 - after^2) / torque_rms^2
   double material = 0;    // largest per-joint explained RMS / torque RMS
@@ -40,6 +39,12 @@ double score(const Eigen::VectorXd& stacked, const Eigen::VectorXd& weight, Eige
     for (Eigen::Index j = 0; j < n; ++j) sum += weight[j] * weight[j] * stacked[s * n + j] * stacked[s * n + j];
   }
   return sum;
+}
+
+// Equal explanations: what `c` explains beyond `top` or short of it is immaterial, or within the
+// fold spread of `top`.
+bool as_good_as(const Candidate& c, const Candidate& top) {
+  return c.explained >= top.explained - kMaterial * kMaterial || c.shrink >= top.shrink - 0.5 * (top.high - top.low);
 }
 
 // Half the 95 % interval of a mean over the folds.
@@ -60,13 +65,14 @@ Candidate evaluate(const Effect& effect, const Eigen::MatrixXd& accepted, const 
   c.cv = cross_validate(r0, e, n, weight);
   const Eigen::Index samples = r0.size() / n;
   c.shrink = 1.0 - score(c.cv.heldout, weight, n, 0, samples) / score(baseline, weight, n, 0, samples);
+  std::vector<double> folds;  // shrink per held-out fold
   Eigen::Index begin = 0;
   for (const Eigen::Index end : c.cv.fold_end) {
     const double before = score(baseline, weight, n, begin, end);
-    c.folds.push_back(before > 0 ? 1.0 - score(c.cv.heldout, weight, n, begin, end) / before : 0.0);
+    folds.push_back(before > 0 ? 1.0 - score(c.cv.heldout, weight, n, begin, end) / before : 0.0);
     begin = end;
   }
-  const double half = half_interval(c.folds);
+  const double half = half_interval(folds);
   c.low = c.shrink - half;
   c.high = c.shrink + half;
   c.after = joint_rms(c.cv.heldout, n);
@@ -595,9 +601,7 @@ Diagnosis diagnose(const Dataset& d, const pipeline::Derivation& derivation) {
       top = *first;
       const Candidate* pick = top;
       for (const Candidate* c : order) {
-        const bool as_good = c->explained >= top->explained - kMaterial * kMaterial ||
-                             c->shrink >= top->shrink - 0.5 * (top->high - top->low);
-        if (usable(c) && as_good && c->effect->columns.cols() < pick->effect->columns.cols()) pick = c;
+        if (usable(c) && as_good_as(*c, *top) && c->effect->columns.cols() < pick->effect->columns.cols()) pick = c;
       }
       pick = first_of_a_smaller_pair(pick, order, best, usable, accepted, r0, baseline, weight, n);
       r = describe(*pick, before, accepted.cols(), out.gap.torque_rms);
@@ -630,10 +634,7 @@ Diagnosis diagnose(const Dataset& d, const pipeline::Derivation& derivation) {
       chosen = pick;
     }
     if (chosen == nullptr) break;
-    auto equal = [&](const Candidate* c) {
-      return c->explained >= top->explained - kMaterial * kMaterial ||
-             c->shrink >= top->shrink - 0.5 * (top->high - top->low);
-    };
+    auto equal = [&](const Candidate* c) { return as_good_as(*c, *top); };
     r.accepted = true;
     for (const Candidate* c : order) {
       if (c == chosen || !usable(c) || !equal(c)) continue;
