@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 
 namespace dyncc::diagnose {
 namespace {
@@ -77,6 +78,29 @@ Eigen::MatrixXd Dataset::condition(const Eigen::MatrixXd& stacked) const {
     row += static_cast<Eigen::Index>(g.keep.size());
   }
   return out;
+}
+
+Eigen::VectorXd velocity_error(const Dataset& d) {
+  Eigen::VectorXd out = Eigen::VectorXd::Zero(d.n);
+  for (Eigen::Index j = 0; j < d.n; ++j) {
+    double position_error = 0;
+    for (const Audit& a : d.audits) {
+      const JointAudit& ja = a.joints[static_cast<std::size_t>(j)];
+      position_error = std::max(position_error, std::hypot(ja.position_noise, ja.quantum / std::sqrt(12.0)));
+    }
+    out[j] = 2 * std::numbers::pi * d.cutoff * position_error;
+  }
+  return out;
+}
+
+Eigen::VectorXd away_from_zero_velocity(const Dataset& d) {
+  const Eigen::VectorXd band = (2.0 * velocity_error(d)).cwiseMax(kTurnOverBand);
+  Eigen::MatrixXd near_zero = Eigen::MatrixXd::Zero(d.samples() * d.n, 1);
+  for (Eigen::Index s = 0; s < d.samples(); ++s) {
+    for (Eigen::Index j = 0; j < d.n; ++j) near_zero(s * d.n + j, 0) = std::abs(d.qd(s, j)) < band[j] ? 1.0 : 0.0;
+  }
+  const Eigen::VectorXd leak = d.condition(near_zero).col(0);
+  return (leak.array().abs() <= kBandLeak).cast<double>().matrix();
 }
 
 Eigen::VectorXd torque_weights(const Eigen::VectorXd& torque_rms) {

@@ -73,6 +73,20 @@ struct Dataset {
   [[nodiscard]] Eigen::Index rows() const { return analysis_t.size(); }
 };
 
+/// Per joint: how far the filtered velocity estimate may be off (rad/s), one standard error from
+/// the positions' noise and quantisation (the worst log) through the filter's bandwidth. A
+/// velocity this close to zero has no reliable sign.
+Eigen::VectorXd velocity_error(const Dataset& d);
+
+/// Per stacked analysis row (A*n): 1 where joint i's velocity is away from zero, 0 where the band
+/// |qd| < max(kTurnOverBand, twice the velocity error) leaks into the row through the filter (its
+/// filtered indicator above kBandLeak). Near zero a joint's friction is not a function of the
+/// velocity estimate (stiction in a hold, a turn-over of its own shape at a reversal), so what
+/// explains residual only there is no evidence of a friction effect.
+inline constexpr double kTurnOverBand = 0.03;  // rad/s: regularised or sigmoid friction turns over within ~0.01
+inline constexpr double kBandLeak = 0.05;
+Eigen::VectorXd away_from_zero_velocity(const Dataset& d);
+
 /// Per-joint weights that make every joint count relative to its own torque: 1 / torque RMS (floored
 /// at 1e-3 of the largest, so a joint that carries nothing does not dominate).
 Eigen::VectorXd torque_weights(const Eigen::VectorXd& torque_rms);

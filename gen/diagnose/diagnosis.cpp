@@ -29,6 +29,7 @@ struct Candidate {
   double explained = 0;   // sum over joints of (before^2 - after^2) / torque_rms^2
   double material = 0;    // largest per-joint explained RMS / torque RMS
   bool plausible = true;  // its fitted parameters make physical sense
+  double away_shrink = 0;  // the shrink on the rows where the velocity is away from zero
 };
 
 // Weighted squared error over samples [begin, end): joints count relative to their torque.
@@ -39,6 +40,22 @@ double score(const Eigen::VectorXd& stacked, const Eigen::VectorXd& weight, Eige
     for (Eigen::Index j = 0; j < n; ++j) sum += weight[j] * weight[j] * stacked[s * n + j] * stacked[s * n + j];
   }
   return sum;
+}
+
+// The held-out shrink on the stacked rows where `keep` is 1.
+double shrink_where(const Candidate& c, const Eigen::VectorXd& baseline, const Eigen::VectorXd& weight,
+                    const Eigen::VectorXd& keep, Eigen::Index n) {
+  double before = 0, after = 0;
+  for (Eigen::Index r = 0; r < baseline.size(); ++r) {
+    const double w = keep[r] * weight[r % n] * weight[r % n];
+    before += w * baseline[r] * baseline[r];
+    after += w * c.cv.heldout[r] * c.cv.heldout[r];
+  }
+  return before > 0 ? 1.0 - after / before : 0.0;
+}
+
+bool is_friction(const Effect& e) {
+  return e.family == "coulomb_friction" || e.family == "viscous_friction" || e.family == "stribeck_friction";
 }
 
 // Equal explanations: what `c` explains beyond `top` or short of it is immaterial, or within the
@@ -263,16 +280,12 @@ Eigen::VectorXd sign_floor(const Dataset& d, const pipeline::Derivation& derivat
   const Eigen::Index n = d.n, samples = d.samples();
   const Eigen::VectorXd nominal = derivation.numeric->nominal_standard_values();
   const auto& coulomb_of = derivation.model.params.coulomb_of;
+  const Eigen::VectorXd error = velocity_error(d);
   Eigen::VectorXd floor = Eigen::VectorXd::Zero(n);
   for (Eigen::Index j = 0; j < n && j < static_cast<Eigen::Index>(coulomb_of.size()); ++j) {
     const int index = coulomb_of[static_cast<std::size_t>(j)];
     if (index < 0 || nominal[index] == 0) continue;
-    double position_error = 0;
-    for (const Audit& a : d.audits) {
-      const JointAudit& ja = a.joints[static_cast<std::size_t>(j)];
-      position_error = std::max(position_error, std::hypot(ja.position_noise, ja.quantum / std::sqrt(12.0)));
-    }
-    const double velocity_error = 2 * std::numbers::pi * d.cutoff * position_error;
+    const double velocity_error = error[j];
     Eigen::MatrixXd change = Eigen::MatrixXd::Zero(samples * n, 1);
     for (Eigen::Index s = 0; s < samples; ++s) {
       const double v = d.qd(s, j);
@@ -507,6 +520,7 @@ Diagnosis diagnose(const Dataset& d, const pipeline::Derivation& derivation) {
   const Eigen::VectorXd weight = torque_weights(out.gap.torque_rms);
   out.weight = weight;
   const std::vector<Effect> effects = candidate_effects(d, derivation);
+  const Eigen::VectorXd away = away_from_zero_velocity(d);
 
   std::deque<Effect> narrowed_effects;  // stable addresses: candidates point at their effect
   std::deque<Candidate> narrowed_candidates;
@@ -539,16 +553,25 @@ Diagnosis diagnose(const Dataset& d, const pipeline::Derivation& derivation) {
     order.reserve(best.size());
     for (const auto& [name, c] : best) order.push_back(&c);
     std::sort(order.begin(), order.end(), [](const Candidate* a, const Candidate* b) { return a->shrink > b->shrink; });
-    for (auto& [name, c] : best) measure(c, before, out.gap.torque_rms, accepted.cols());
+    for (auto& [name, c] : best) {
+      measure(c, before, out.gap.torque_rms, accepted.cols());
+      if (is_friction(*c.effect)) c.away_shrink = shrink_where(c, baseline, weight, away, n);
+    }
     if (step == 0) {
       for (const Candidate* c : order) {
         out.ranking.push_back(describe(*c, before, accepted.cols(), out.gap.torque_rms));
         out.ranking.back().plausible = c->plausible;
+        if (is_friction(*c->effect)) out.ranking.back().shrink_away_from_zero = c->away_shrink;
       }
       out.within_model = describe(best.at("inertial_parameters"), before, 0, out.gap.torque_rms);
     }
+    // A friction effect must also explain residual where the velocity is away from zero: one that
+    // only fits the rows near zero (a plant whose friction turns over more gently than the
+    // model's, read as a negative Coulomb correction; a sharper one, as a Stribeck excess at the
+    // smallest scale) explains how the friction turns over, which the model cannot know.
     auto acceptable = [](const Candidate* c) {
-      return c->plausible && c->shrink >= kAcceptShrink && c->low > 0.0 && c->material >= kMaterial;
+      return c->plausible && c->shrink >= kAcceptShrink && c->low > 0.0 && c->material >= kMaterial &&
+             (!is_friction(*c->effect) || c->away_shrink >= kAcceptShrink);
     };
     // The best acceptable candidate leads (one above it whose interval still includes 0 does not
     // block it). Parsimony among equal explanations: two candidates are equal when what one

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <Eigen/Dense>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -32,6 +33,9 @@ struct RankedEffect {
   double profile = 0;
   bool accepted = false;
   bool plausible = true;  // its parameters make physical sense (no negative friction or mass)
+  // Friction effects: the shrink on the rows where the velocity is away from zero (what explains
+  // residual only near zero is how the friction turns over, not a friction effect).
+  std::optional<double> shrink_away_from_zero;
 };
 
 struct Window {

@@ -26,6 +26,7 @@ nlohmann::json effect_json(const RankedEffect& r) {
                      {"accepted", r.accepted},
                      {"plausible", r.plausible}};
   if (!r.profile_name.empty()) out[r.profile_name] = r.profile;
+  if (r.shrink_away_from_zero) out["shrink_away_from_zero_velocity"] = *r.shrink_away_from_zero;
   return out;
 }
 
@@ -112,9 +113,12 @@ std::string diagnosis_text(const Dataset& data, const Diagnosis& d) {
       fmt::format("\nwithin the model (re-identified base parameters): shrink {:.1f} %\n", 100 * d.within_model.shrink);
   out += "\ncandidates (first step, held-out):\n";
   for (const RankedEffect& r : d.ranking) {
-    out += fmt::format("  {:<20} shrink {:6.1f} % [{:6.1f}, {:6.1f}]  joints {}{}\n", r.effect, 100 * r.shrink,
+    const std::string away = r.shrink_away_from_zero
+                                 ? fmt::format("  (away from zero velocity {:.1f} %)", 100 * *r.shrink_away_from_zero)
+                                 : std::string();
+    out += fmt::format("  {:<20} shrink {:6.1f} % [{:6.1f}, {:6.1f}]  joints {}{}{}\n", r.effect, 100 * r.shrink,
                        100 * r.shrink_low, 100 * r.shrink_high, joints_text(r.joints),
-                       r.plausible ? "" : "  (implausible fit)");
+                       r.plausible ? "" : "  (implausible fit)", away);
   }
   out += "\nselected:\n";
   if (d.selected.empty()) out += "  nothing\n";

@@ -14,7 +14,6 @@ namespace {
 
 constexpr double kStribeckScales[] = {0.02, 0.03, 0.045, 0.065, 0.1, 0.15, 0.22, 0.33, 0.5};  // rad/s, geometric
 constexpr double kTorqueSignScale = 0.05;  // N m, smoothed sign of the torque (backlash)
-
 // The smallest Stribeck velocity scale the data resolves on each joint. A static excess over the
 // scale vs lasts about 2 vs / |qdd| around a reversal; once that is shorter than the filter's time
 // scale, 1 / (2 pi cutoff), the excess is smeared into the same shape as any other mismatch at
@@ -219,8 +218,8 @@ std::vector<Effect> candidate_effects(const Dataset& d, const pipeline::Derivati
   std::vector<Effect> out;
   const Eigen::Index rows = d.samples() * d.n;
 
-  out.push_back(per_joint(d, "coulomb_friction", "fc", Reading::as_is,
-                          [&](Eigen::Index s, Eigen::Index j) { return smooth_sign(d.qd(s, j)); }));
+  auto sign = [&](Eigen::Index s, Eigen::Index j) { return smooth_sign(d.qd(s, j)); };
+  out.push_back(per_joint(d, "coulomb_friction", "fc", Reading::as_is, sign));
   out.push_back(per_joint(d, "viscous_friction", "fv", Reading::as_is,
                           [&](Eigen::Index s, Eigen::Index j) { return d.qd(s, j); }));
   // Stribeck: Coulomb plus a static excess that fades with speed; with its Coulomb column it is a
@@ -228,10 +227,9 @@ std::vector<Effect> candidate_effects(const Dataset& d, const pipeline::Derivati
   const Eigen::VectorXd resolved = resolved_stribeck_scale(d);
   for (const double vs : kStribeckScales) {
     if ((resolved.array() > vs).all()) continue;  // no joint resolves this scale
-    Effect e = per_joint(d, "stribeck_friction", "fc", Reading::as_is,
-                         [&](Eigen::Index s, Eigen::Index j) { return smooth_sign(d.qd(s, j)); });
+    Effect e = per_joint(d, "stribeck_friction", "fc", Reading::as_is, sign);
     const Effect excess = per_joint(d, "stribeck_friction", "fs", Reading::as_is, [&](Eigen::Index s, Eigen::Index j) {
-      return vs >= resolved[j] ? stribeck_fade(d.qd(s, j), vs) * smooth_sign(d.qd(s, j)) : 0.0;
+      return vs >= resolved[j] ? stribeck_fade(d.qd(s, j), vs) * sign(s, j) : 0.0;
     });
     Eigen::MatrixXd both(rows, 2 * d.n);
     both << e.columns, excess.columns;
