@@ -40,14 +40,14 @@ Eigen::VectorXd joint_rms(const Eigen::VectorXd& stacked, Eigen::Index joints, E
 }
 
 CrossValidation cross_validate(const Eigen::VectorXd& r, const Eigen::MatrixXd& E, Eigen::Index joints,
-                               const Eigen::VectorXd& weight) {
+                               const Eigen::VectorXd& weight, const Eigen::MatrixXd* fitted_on) {
   const Eigen::Index samples = r.size() / joints, k = E.cols();
   CrossValidation cv;
   cv.heldout = r;
   cv.theta_folds.resize(k, kFolds);
   Eigen::VectorXd w(r.size());
   for (Eigen::Index s = 0; s < samples; ++s) w.segment(s * joints, joints) = weight;
-  const Eigen::MatrixXd we = w.asDiagonal() * E;
+  const Eigen::MatrixXd we = w.asDiagonal() * (fitted_on != nullptr ? *fitted_on : E);
   const Eigen::VectorXd wr = w.asDiagonal() * r;
   const Eigen::VectorXd scale = column_scale(we);
   for (int f = 0; f < kFolds; ++f) {

@@ -21,8 +21,10 @@ struct CrossValidation {
 
 /// Fits r ~ E theta (columns scaled to unit norm, a tiny ridge for collinear columns) with
 /// rows weighted per joint (weight[j] for joint j's rows), K times on K-1 blocks.
+/// With `fitted_on` (same shape as E), the fits use its columns and the predictions E's: a column
+/// can be fitted on some rows only (zero elsewhere in `fitted_on`) and still predict on all.
 CrossValidation cross_validate(const Eigen::VectorXd& r, const Eigen::MatrixXd& E, Eigen::Index joints,
-                               const Eigen::VectorXd& weight);
+                               const Eigen::VectorXd& weight, const Eigen::MatrixXd* fitted_on = nullptr);
 
 /// Per-joint RMS of stacked rows (row s*n + j), over samples [begin, end).
 Eigen::VectorXd joint_rms(const Eigen::VectorXd& stacked, Eigen::Index joints, Eigen::Index begin = 0,

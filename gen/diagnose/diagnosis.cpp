@@ -452,19 +452,9 @@ Effect without_fitted(const Effect& e, const std::vector<std::string>& fitted) {
 // more is dropped.
 void refit_together(Diagnosis& out, const Eigen::VectorXd& r0, const Eigen::VectorXd& weight, Eigen::Index n) {
   if (out.accepted_effects.empty()) return;
-  auto stacked = [&]() {
-    Eigen::Index columns = 0;
-    for (const Effect& e : out.accepted_effects) columns += e.columns.cols();
-    Eigen::MatrixXd all(r0.size(), columns);
-    Eigen::Index at = 0;
-    for (const Effect& e : out.accepted_effects) {
-      all.middleCols(at, e.columns.cols()) = e.columns;
-      at += e.columns.cols();
-    }
-    return all;
-  };
+  auto fit = [&]() { return fit_together(out.accepted_effects, r0, weight, out.away, n); };
   Candidate joint;
-  joint.cv = cross_validate(r0, stacked(), n, weight);
+  joint.cv = fit();
   joint.after = joint_rms(joint.cv.heldout, n);
   bool narrowed_any = false;
   Eigen::Index at = 0;
@@ -497,7 +487,7 @@ void refit_together(Diagnosis& out, const Eigen::VectorXd& r0, const Eigen::Vect
     out.final_after = joint_rms(r0, n);
     return;
   }
-  if (narrowed_any) joint.cv = cross_validate(r0, stacked(), n, weight);
+  if (narrowed_any) joint.cv = fit();
   joint.after = joint_rms(joint.cv.heldout, n);
   at = 0;
   for (std::size_t k = 0; k < out.accepted_effects.size(); ++k) {
@@ -512,6 +502,21 @@ void refit_together(Diagnosis& out, const Eigen::VectorXd& r0, const Eigen::Vect
 
 }  // namespace
 
+CrossValidation fit_together(const std::vector<Effect>& effects, const Eigen::VectorXd& residual,
+                             const Eigen::VectorXd& weight, const Eigen::VectorXd& away, Eigen::Index n) {
+  Eigen::Index columns = 0;
+  for (const Effect& e : effects) columns += e.columns.cols();
+  Eigen::MatrixXd all(residual.size(), columns), fitted_on(residual.size(), columns);
+  Eigen::Index at = 0;
+  for (const Effect& e : effects) {
+    all.middleCols(at, e.columns.cols()) = e.columns;
+    fitted_on.middleCols(at, e.columns.cols()) = e.columns;
+    if (is_friction(e)) fitted_on.middleCols(at, e.columns.cols()).array().colwise() *= away.array();
+    at += e.columns.cols();
+  }
+  return cross_validate(residual, all, n, weight, &fitted_on);
+}
+
 Diagnosis diagnose(const Dataset& d, const pipeline::Derivation& derivation) {
   Diagnosis out;
   const Eigen::Index n = d.n;
@@ -520,7 +525,8 @@ Diagnosis diagnose(const Dataset& d, const pipeline::Derivation& derivation) {
   const Eigen::VectorXd weight = torque_weights(out.gap.torque_rms);
   out.weight = weight;
   const std::vector<Effect> effects = candidate_effects(d, derivation);
-  const Eigen::VectorXd away = away_from_zero_velocity(d);
+  out.away = away_from_zero_velocity(d);
+  const Eigen::VectorXd& away = out.away;
 
   std::deque<Effect> narrowed_effects;  // stable addresses: candidates point at their effect
   std::deque<Candidate> narrowed_candidates;
@@ -543,9 +549,13 @@ Diagnosis diagnose(const Dataset& d, const pipeline::Derivation& derivation) {
       const Effect& e = *use;
       Candidate c = evaluate(e, accepted, r0, baseline, weight, n);
       c.plausible = plausible(describe(c, before, accepted.cols(), out.gap.torque_rms), derivation);
+      if (is_friction(e)) c.away_shrink = shrink_where(c, baseline, weight, away, n);
+      // A friction profile point (a Stribeck scale) is chosen where the velocity is away from
+      // zero: near zero any scale as small as the turn-over fits how the friction turns over.
+      const auto key = [](const Candidate& x) { return is_friction(*x.effect) ? x.away_shrink : x.shrink; };
       auto it = best.find(e.name);
       const bool better = it == best.end() || (c.plausible && !it->second.plausible) ||
-                          (c.plausible == it->second.plausible && c.shrink > it->second.shrink);
+                          (c.plausible == it->second.plausible && key(c) > key(it->second));
       if (better) best[e.name] = std::move(c);
     }
     if (best.empty()) break;
@@ -553,10 +563,7 @@ Diagnosis diagnose(const Dataset& d, const pipeline::Derivation& derivation) {
     order.reserve(best.size());
     for (const auto& [name, c] : best) order.push_back(&c);
     std::sort(order.begin(), order.end(), [](const Candidate* a, const Candidate* b) { return a->shrink > b->shrink; });
-    for (auto& [name, c] : best) {
-      measure(c, before, out.gap.torque_rms, accepted.cols());
-      if (is_friction(*c.effect)) c.away_shrink = shrink_where(c, baseline, weight, away, n);
-    }
+    for (auto& [name, c] : best) measure(c, before, out.gap.torque_rms, accepted.cols());
     if (step == 0) {
       for (const Candidate* c : order) {
         out.ranking.push_back(describe(*c, before, accepted.cols(), out.gap.torque_rms));

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "diagnose/crossval.hpp"
 #include "diagnose/dataset.hpp"
 #include "diagnose/effects.hpp"
 
@@ -74,8 +75,16 @@ struct Diagnosis {
   // accepted (per-joint effects narrowed to their joints), in order, and the per-joint weights.
   std::vector<Effect> accepted_effects;
   Eigen::VectorXd weight;
+  Eigen::VectorXd away;  // away_from_zero_velocity of the data: where friction columns are fitted
 };
 
 Diagnosis diagnose(const Dataset& data, const pipeline::Derivation& derivation);
+
+/// Effects fitted together on the residual (blocked cross-validation with the per-joint weights):
+/// friction columns are fitted where the velocity is away from zero (`away`) and predict on every
+/// row. Near zero a log's friction turns over in its own way, which would bend a Coulomb term
+/// fitted there (a rigid plant's friction regularised over 10 mrad/s read 11 % low).
+CrossValidation fit_together(const std::vector<Effect>& effects, const Eigen::VectorXd& residual,
+                             const Eigen::VectorXd& weight, const Eigen::VectorXd& away, Eigen::Index n);
 
 }  // namespace dyncc::diagnose

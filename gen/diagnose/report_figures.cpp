@@ -234,6 +234,8 @@ plot::Figure waterfall_figure(const Dataset& d, const Diagnosis& diagnosis) {
     const double scale = 100 / std::max(diagnosis.gap.torque_rms[j], 1e-12);
     std::vector<double> levels{scale * diagnosis.gap.residual_rms[j]};
     for (const RankedEffect& r : diagnosis.selected) levels.push_back(scale * r.after[j]);
+    // The last stage is the joint refit of every selected effect, what the diagnosis reports.
+    if (diagnosis.final_after.size() == d.n) levels.back() = scale * diagnosis.final_after[j];
     joints.series.push_back(steps(fmt::format("joint {}", j + 1), levels));
   }
   f.panels = {std::move(all), std::move(joints)};

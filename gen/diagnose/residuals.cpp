@@ -3,15 +3,6 @@
 #include "diagnose/crossval.hpp"
 
 namespace dyncc::diagnose {
-namespace {
-
-Eigen::MatrixXd beside(const Eigen::MatrixXd& left, const Eigen::MatrixXd& right) {
-  Eigen::MatrixXd out(left.rows(), left.cols() + right.cols());
-  out << left, right;
-  return out;
-}
-
-}  // namespace
 
 SelectedResiduals selected_residuals(const Dataset& data, const Diagnosis& diagnosis) {
   SelectedResiduals out;
@@ -19,19 +10,14 @@ SelectedResiduals selected_residuals(const Dataset& data, const Diagnosis& diagn
   out.heldout = data.residual;
   if (diagnosis.selected.empty()) return out;
 
-  // The effects exactly as the selection accepted them, with its weights.
-  std::vector<const Effect*> chosen;
-  Eigen::MatrixXd accepted(data.residual.size(), 0);
-  for (const Effect& e : diagnosis.accepted_effects) {
-    chosen.push_back(&e);
-    accepted = beside(accepted, e.columns);
-  }
-  const CrossValidation cv = cross_validate(data.residual, accepted, data.n, diagnosis.weight);
+  // The effects exactly as the selection accepted them, with its weights and fitting rows.
+  const CrossValidation cv = fit_together(diagnosis.accepted_effects, data.residual, diagnosis.weight, diagnosis.away,
+                                          data.n);
   out.heldout = cv.heldout;
 
   Eigen::Index at = 0;
-  for (std::size_t k = 0; k < chosen.size(); ++k) {
-    const Effect& e = *chosen[k];
+  for (std::size_t k = 0; k < diagnosis.accepted_effects.size(); ++k) {
+    const Effect& e = diagnosis.accepted_effects[k];
     EffectFit fit;
     fit.effect = e.name;
     fit.joints = diagnosis.selected[k].joints;
