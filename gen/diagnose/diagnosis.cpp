@@ -26,9 +26,9 @@ struct Candidate {
   CrossValidation cv;
   double shrink = 0, low = 0, high = 0;
   Eigen::VectorXd after;
-  double explained = 0;   // sum over joints of (before^2 - after^2) / torque_rms^2
-  double material = 0;    // largest per-joint explained RMS / torque RMS
-  bool plausible = true;  // its fitted parameters make physical sense
+  double explained = 0;    // sum over joints of (before^2 - after^2) / torque_rms^2
+  double material = 0;     // largest per-joint explained RMS / torque RMS
+  bool plausible = true;   // its fitted parameters make physical sense
   double away_shrink = 0;  // the shrink on the rows where the velocity is away from zero
 };
 
