@@ -12,6 +12,8 @@
 #include <string>
 #include <vector>
 
+#include "temp_path.hpp"
+
 namespace dyncc::test {
 
 /// A path in single quotes for the shell (built with append: GCC 12 warns falsely, -Wrestrict,
@@ -46,12 +48,7 @@ inline DynccRun run_dyncc(const std::string& arguments, int seconds = 120) {
 }
 
 /// A fresh path for an output file of this test.
-inline std::filesystem::path output_path(const std::string& name) {
-  const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-  const std::filesystem::path dir = std::filesystem::path(::testing::TempDir()) / "dyncc_cli_tests";
-  std::filesystem::create_directories(dir);
-  return dir / (std::string(info->test_suite_name()) + "." + info->name() + "." + name);
-}
+inline std::filesystem::path output_path(const std::string& name) { return temp_path(name); }
 
 /// Writes `text` to a fresh output path of this test and returns the path.
 inline std::filesystem::path write_text(const std::string& name, const std::string& text) {

@@ -14,6 +14,7 @@
 #include "diagnose/diagnosis_output.hpp"
 #include "diagnose/synthetic_log.hpp"
 #include "dynamics_support.hpp"
+#include "temp_path.hpp"
 
 namespace dyncc::test {
 namespace {
@@ -33,7 +34,7 @@ struct Case {
 };
 
 diagnose::Diagnosis run(const Injection& inject, const diagnose::SyntheticOptions& s, std::string* text = nullptr) {
-  const auto path = std::filesystem::path(::testing::TempDir()) / ("dyncc_diagnose_" + inject.effect + ".csv");
+  const auto path = temp_path(inject.effect + ".csv");
   diagnose::write_synthetic_log(kraft(), {inject}, s, path);
   const auto log = diagnose::read_joint_log(path.string(), 3);
   const diagnose::Dataset data = diagnose::build_dataset({log}, kraft());
@@ -84,7 +85,7 @@ TEST(InjectedEffects, TwoEffectsAreEachPlacedOnTheirOwnJoint) {
   viscous.effect = "viscous_friction";
   viscous.joint = 2;
   viscous.size = 0.4;
-  const auto path = std::filesystem::path(::testing::TempDir()) / "dyncc_diagnose_two_effects.csv";
+  const auto path = temp_path("two_effects.csv");
   diagnose::write_synthetic_log(kraft(), {coulomb, viscous}, diagnose::SyntheticOptions{}, path);
   const diagnose::Dataset data = diagnose::build_dataset({diagnose::read_joint_log(path.string(), 3)}, kraft());
   const diagnose::Diagnosis d = diagnose::diagnose(data, kraft());
@@ -117,7 +118,7 @@ TEST(InjectedEffects, TwoSmallEffectsAreNamedRatherThanTheInertialParameters) {
   rotor.size = 0.06;
   payload.effect = "payload";
   payload.size = 0.05;
-  const auto path = std::filesystem::path(::testing::TempDir()) / "dyncc_diagnose_rotor_payload.csv";
+  const auto path = temp_path("rotor_payload.csv");
   diagnose::SyntheticOptions options;
   options.rate = 81;
   diagnose::write_synthetic_log(kraft(), {rotor, payload}, options, path);
@@ -185,7 +186,7 @@ TEST(InjectedEffects, FrictionTurningOverDifferentlyAtReversalsIsNotAnEffect) {
   diagnose::SyntheticOptions options;
   options.rate = 1000;
   options.seed = 23U * 1000U + 25U;
-  const auto path = std::filesystem::path(::testing::TempDir()) / "dyncc_diagnose_turn_over.csv";
+  const auto path = temp_path("turn_over.csv");
   diagnose::write_synthetic_log(*puma, {}, options, path);
   const diagnose::Dataset data = diagnose::build_dataset({diagnose::read_joint_log(path.string(), 6)}, *puma);
   const diagnose::Diagnosis d = diagnose::diagnose(data, *puma);

@@ -7,7 +7,6 @@
 // spectrum, flagged windows are the shaded ones; and `dyncc diagnose --out` writes a page whose
 // figures are all in its folder.
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
@@ -28,6 +27,7 @@
 #include "diagnose/synthetic_log.hpp"
 #include "diagnose/velocity_curve.hpp"
 #include "dynamics_support.hpp"
+#include "temp_path.hpp"
 
 namespace dyncc::test {
 namespace {
@@ -39,11 +39,7 @@ const pipeline::Derivation& kraft() {
   return *d;
 }
 
-std::filesystem::path temp_file(const std::string& name) {
-  // The pid keeps a Release and a sanitizer run of the same test apart.
-  return std::filesystem::path(::testing::TempDir()) /
-         ("dyncc_diagnose_report_" + name + "_" + std::to_string(getpid()) + ".csv");
-}
+std::filesystem::path temp_file(const std::string& name) { return temp_path(name + ".csv"); }
 
 diagnose::JointLog synthetic_log(const std::vector<Injection>& effects, const std::string& name) {
   const auto path = temp_file(name);

@@ -10,7 +10,6 @@
 #include <cairo.h>
 #include <gtest/gtest.h>
 #include <tinyxml2.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
@@ -23,6 +22,8 @@
 #include <string>
 #include <utility>
 #include <vector>
+
+#include "temp_path.hpp"
 
 namespace dyncc::plot {
 namespace {
@@ -128,9 +129,7 @@ Figure two_panels() {
 class Plot : public ::testing::Test {
  protected:
   void SetUp() override {
-    const std::string test = ::testing::UnitTest::GetInstance()->current_test_info()->name();
-    // The pid keeps a Release and a sanitizer run of the same test apart.
-    dir_ = std::filesystem::path(::testing::TempDir()) / ("dyncc_plot_" + test + "_" + std::to_string(getpid()));
+    dir_ = dyncc::test::temp_path("figures");
     std::filesystem::remove_all(dir_);
     std::filesystem::create_directories(dir_);
   }

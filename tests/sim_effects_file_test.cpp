@@ -9,12 +9,13 @@
 #include <string>
 
 #include "effects_file.hpp"
+#include "temp_path.hpp"
 
 namespace dyncc::sim {
 namespace {
 
 std::filesystem::path write(const std::string& name, const std::string& text) {
-  auto path = std::filesystem::path(::testing::TempDir()) / name;
+  auto path = dyncc::test::temp_path(name);
   std::ofstream(path) << text;
   return path;
 }

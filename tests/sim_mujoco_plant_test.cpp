@@ -12,6 +12,7 @@
 #include <string>
 
 #include "plant.hpp"
+#include "temp_path.hpp"
 
 namespace dyncc::sim {
 namespace {
@@ -281,11 +282,10 @@ TEST(SimMujocoPlant, JointFrictionHoldsBelowTheCoulombTorque) {
 TEST(SimMujocoPlant, UnloadableModelsThrow) {
   const PlantSettings settings;
   EXPECT_THROW((void)make_mujoco_plant(settings, "/nonexistent/kraft.xml"), std::runtime_error);
-  const std::filesystem::path dir = std::filesystem::path(testing::TempDir());
-  const std::filesystem::path broken = dir / "sim_mujoco_broken.xml";
+  const std::filesystem::path broken = dyncc::test::temp_path("broken.xml");
   std::ofstream(broken) << "<mujoco><worldbody><body name=\"forearm\"";  // not XML
   EXPECT_THROW((void)make_mujoco_plant(settings, broken.string()), std::runtime_error);
-  const std::filesystem::path bad = dir / "sim_mujoco_bad.xml";
+  const std::filesystem::path bad = dyncc::test::temp_path("bad.xml");
   std::ofstream(bad) << "<mujoco><worldbody><body name=\"forearm\"><joint type=\"nonsense\"/>"
                         "<inertial pos=\"0 0 0\" mass=\"1\" diaginertia=\"1 1 1\"/></body></worldbody></mujoco>";
   try {
@@ -294,7 +294,7 @@ TEST(SimMujocoPlant, UnloadableModelsThrow) {
   } catch (const std::runtime_error& e) {
     EXPECT_NE(std::string(e.what()).find("MuJoCo cannot load"), std::string::npos) << e.what();
   }
-  const std::filesystem::path no_forearm = dir / "sim_mujoco_no_forearm.xml";
+  const std::filesystem::path no_forearm = dyncc::test::temp_path("no_forearm.xml");
   std::ofstream(no_forearm) << "<mujoco><worldbody/></mujoco>";
   EXPECT_THROW((void)make_mujoco_plant(settings, no_forearm.string()), std::runtime_error);
   std::filesystem::remove(broken);
