@@ -7,6 +7,7 @@
 #include <map>
 #include <numbers>
 #include <numeric>
+#include <optional>
 
 #include "diagnose/crossval.hpp"
 
@@ -25,6 +26,7 @@ struct Candidate {
   const Effect* effect = nullptr;
   CrossValidation cv;
   double shrink = 0, low = 0, high = 0;
+  std::vector<double> folds;  // the shrink of each held-out fold
   Eigen::VectorXd after;
   double explained = 0;    // sum over joints of (before^2 - after^2) / torque_rms^2
   double material = 0;     // largest per-joint explained RMS / torque RMS
@@ -58,6 +60,11 @@ bool is_friction(const Effect& e) {
   return e.family == "coulomb_friction" || e.family == "viscous_friction" || e.family == "stribeck_friction";
 }
 
+// What picks a profile effect's point: a friction profile point (a Stribeck scale) is chosen
+// where the velocity is away from zero, because near zero any scale as small as the turn-over fits
+// how the friction turns over.
+double point_key(const Candidate& c) { return is_friction(*c.effect) ? c.away_shrink : c.shrink; }
+
 // Equal explanations: what `c` explains beyond `top` or short of it is immaterial, or within the
 // fold spread of `top`.
 bool as_good_as(const Candidate& c, const Candidate& top) {
@@ -73,6 +80,17 @@ double half_interval(const std::vector<double>& folds) {
   return kStudent95 * std::sqrt(var / (k - 1) / k);
 }
 
+// Whether `a` explains clearly more than `b` (evaluated on the same folds and baseline): fold by
+// fold, so that how much friction signal a fold holds, which moves both alike, does not hide a
+// difference that every fold shows; and by a margin, so that an extra column's consistent sliver
+// is not "more".
+bool clearly_more(const Candidate& a, const Candidate& b) {
+  std::vector<double> gain(a.folds.size());
+  for (std::size_t k = 0; k < gain.size(); ++k) gain[k] = a.folds[k] - b.folds[k];
+  const double mean = std::accumulate(gain.begin(), gain.end(), 0.0) / static_cast<double>(gain.size());
+  return mean > half_interval(gain) && a.shrink - b.shrink > kAcceptShrink * a.shrink + 0.01;
+}
+
 Candidate evaluate(const Effect& effect, const Eigen::MatrixXd& accepted, const Eigen::VectorXd& r0,
                    const Eigen::VectorXd& baseline, const Eigen::VectorXd& weight, Eigen::Index n) {
   Candidate c;
@@ -82,14 +100,13 @@ Candidate evaluate(const Effect& effect, const Eigen::MatrixXd& accepted, const 
   c.cv = cross_validate(r0, e, n, weight);
   const Eigen::Index samples = r0.size() / n;
   c.shrink = 1.0 - score(c.cv.heldout, weight, n, 0, samples) / score(baseline, weight, n, 0, samples);
-  std::vector<double> folds;  // shrink per held-out fold
   Eigen::Index begin = 0;
   for (const Eigen::Index end : c.cv.fold_end) {
     const double before = score(baseline, weight, n, begin, end);
-    folds.push_back(before > 0 ? 1.0 - score(c.cv.heldout, weight, n, begin, end) / before : 0.0);
+    c.folds.push_back(before > 0 ? 1.0 - score(c.cv.heldout, weight, n, begin, end) / before : 0.0);
     begin = end;
   }
-  const double half = half_interval(folds);
+  const double half = half_interval(c.folds);
   c.low = c.shrink - half;
   c.high = c.shrink + half;
   c.after = joint_rms(c.cv.heldout, n);
@@ -550,12 +567,9 @@ Diagnosis diagnose(const Dataset& d, const pipeline::Derivation& derivation) {
       Candidate c = evaluate(e, accepted, r0, baseline, weight, n);
       c.plausible = plausible(describe(c, before, accepted.cols(), out.gap.torque_rms), derivation);
       if (is_friction(e)) c.away_shrink = shrink_where(c, baseline, weight, away, n);
-      // A friction profile point (a Stribeck scale) is chosen where the velocity is away from
-      // zero: near zero any scale as small as the turn-over fits how the friction turns over.
-      const auto key = [](const Candidate& x) { return is_friction(*x.effect) ? x.away_shrink : x.shrink; };
       auto it = best.find(e.name);
       const bool better = it == best.end() || (c.plausible && !it->second.plausible) ||
-                          (c.plausible == it->second.plausible && key(c) > key(it->second));
+                          (c.plausible == it->second.plausible && point_key(c) > point_key(it->second));
       if (better) best[e.name] = std::move(c);
     }
     if (best.empty()) break;
@@ -608,7 +622,7 @@ Diagnosis diagnose(const Dataset& d, const pipeline::Derivation& derivation) {
           const Candidate other = evaluate(theirs, accepted, r0, baseline, weight, n);
           const bool better = other.shrink > own + kAcceptShrink * own + 0.01;
           const bool simpler_and_as_good =
-              theirs.columns.cols() < mine_effect.columns.cols() && other.shrink >= own - 0.5 * (mine.high - mine.low);
+              theirs.columns.cols() < mine_effect.columns.cols() && !clearly_more(mine, other);
           beaten = (better || simpler_and_as_good) && other.low > 0.0 &&
                    plausible(describe(other, before, accepted.cols(), out.gap.torque_rms), derivation);
         }
@@ -640,8 +654,22 @@ Diagnosis diagnose(const Dataset& d, const pipeline::Derivation& derivation) {
         if (kept.empty()) {
           r.joints.clear();
         } else {
-          narrowed_effects.push_back(narrowed(*pick->effect, kept));
-          narrowed_candidates.push_back(evaluate(narrowed_effects.back(), accepted, r0, baseline, weight, n));
+          // A profile effect's point is chosen again on the kept joints: the point that suited
+          // every joint together (a Stribeck scale bent to fit a Coulomb friction of another
+          // joint) need not suit these.
+          std::optional<Candidate> best_point;
+          for (const Effect& whole : effects) {
+            if (pick->effect->profile_name.empty() || whole.name != pick->effect->name) continue;
+            narrowed_effects.push_back(narrowed(without_fitted(whole, fitted), kept));
+            Candidate c = evaluate(narrowed_effects.back(), accepted, r0, baseline, weight, n);
+            if (is_friction(whole)) c.away_shrink = shrink_where(c, baseline, weight, away, n);
+            if (!best_point || point_key(c) > point_key(*best_point)) best_point = std::move(c);
+          }
+          if (!best_point) {
+            narrowed_effects.push_back(narrowed(*pick->effect, kept));
+            best_point = evaluate(narrowed_effects.back(), accepted, r0, baseline, weight, n);
+          }
+          narrowed_candidates.push_back(std::move(*best_point));
           r = describe(narrowed_candidates.back(), before, accepted.cols(), out.gap.torque_rms);
           rejected.push_back(pick);  // the un-narrowed one is not an alternative of its narrowed self
           // Narrowed, it may explain less than the next candidate of another kind, which then
