@@ -175,61 +175,6 @@ auto central_difference(F f, const Eigen::VectorXd& q, Eigen::Index j) {
 // The payload link's point Jacobian (from the kinematics' velocity propagation) against finite
 // differences of the point's position (origin + R c), and its vertical part against the lever read
 // off the energy: two derivations of the same geometry agree.
-// An effect-free log whose friction turns over differently from the model's: the PUMA 560 log of
-// the blind bench's seed 23, case 25 (1 kHz; the log's Coulomb friction is an exact sign, the
-// model's is smoothed over the estimated velocity). Its only residual is at reversals, where a
-// Stribeck excess at the smallest scale fits it (it was read as stribeck_friction of joint 5);
-// the friction does not differ where the velocity is away from zero, so the verdict is none.
-TEST(InjectedEffects, FrictionTurningOverDifferentlyAtReversalsIsNotAnEffect) {
-  static const std::unique_ptr<pipeline::Derivation> puma =
-      derive_file(std::filesystem::path(DYNCC_SOURCE_DIR) / "robots" / "puma560.yaml");
-  diagnose::SyntheticOptions options;
-  options.rate = 1000;
-  options.seed = 23U * 1000U + 25U;
-  const auto path = temp_path("turn_over.csv");
-  diagnose::write_synthetic_log(*puma, {}, options, path);
-  const diagnose::Dataset data = diagnose::build_dataset({diagnose::read_joint_log(path.string(), 6)}, *puma);
-  const diagnose::Diagnosis d = diagnose::diagnose(data, *puma);
-  SCOPED_TRACE(diagnose::diagnosis_text(data, d));
-  EXPECT_EQ(d.verdict.effect, "none");
-  EXPECT_TRUE(d.selected.empty());
-}
-
-// Case 29 of the blind seed 23 (Panda, 500 Hz): a Stribeck excess on joint 1 (5 % of its torque)
-// beside a Coulomb friction on joint 4 (half as big). Stribeck columns on both joints lead the
-// first step; narrowed to joint 1 they kept the scale chosen for both joints together (bent to
-// fit joint 4's Coulomb), explained less than Coulomb friction on both, and the verdict was the
-// smaller effect. The scale is chosen again on the kept joints, and a simpler effect is as good
-// as a fuller one only when no fold shows the fuller one clearly better.
-TEST(InjectedEffects, StribeckBesideASmallerCoulombOfAnotherJointLeads) {
-  static const std::unique_ptr<pipeline::Derivation> panda =
-      derive_file(std::filesystem::path(DYNCC_SOURCE_DIR) / "robots" / "panda.yaml");
-  Injection stribeck, coulomb;
-  stribeck.effect = "stribeck_friction";
-  stribeck.joint = 0;
-  stribeck.size = 0.0604;
-  coulomb.effect = "coulomb_friction";
-  coulomb.joint = 3;
-  coulomb.size = 0.205;
-  diagnose::SyntheticOptions options;
-  options.rate = 500;
-  options.seed = 23U * 1000U + 29U;
-  const auto path = temp_path("stribeck_coulomb.csv");
-  diagnose::write_synthetic_log(*panda, {stribeck, coulomb}, options, path);
-  const diagnose::Dataset data = diagnose::build_dataset({diagnose::read_joint_log(path.string(), 7)}, *panda);
-  const diagnose::Diagnosis d = diagnose::diagnose(data, *panda);
-  SCOPED_TRACE(diagnose::diagnosis_text(data, d));
-  EXPECT_EQ(d.verdict.effect, "stribeck_friction");
-  EXPECT_EQ(d.verdict.joints, std::vector<int>{1});
-  ASSERT_GE(d.selected.size(), 2U);
-  std::map<std::string, double> fitted;
-  for (const auto& r : d.selected) {
-    for (const auto& p : r.parameters) fitted[p.name] = p.value;
-  }
-  EXPECT_NEAR(fitted["fs1"], 0.0604, 0.006);
-  EXPECT_NEAR(fitted["fc4"], 0.205, 0.02);
-}
-
 TEST(ContactGeometry, PointJacobianIsTheGradientOfThePointAndAgreesWithTheLever) {
   const diagnose::ContactGeometry geometry(kraft());
   ASSERT_TRUE(geometry.valid());
