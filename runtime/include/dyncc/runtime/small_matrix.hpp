@@ -46,7 +46,9 @@ bool cholesky(const Matrix<S, N>& m, Matrix<S, N>& l, S margin = S(0)) {
     l[j * N + j] = pivot;
     for (std::size_t i = j + 1; i < static_cast<std::size_t>(N); ++i) {
       S sum = m[i * N + j];
-      for (std::size_t k = 0; k < j; ++k) sum -= l[i * N + k] * l[j * N + k];
+      // (k runs over the whole row and skips k >= j: a loop bound of j here made GCC 12 at -O1
+      // warn, aggressive-loop-optimizations, of an out-of-range iteration that cannot happen.)
+      for (std::size_t k = 0; k < static_cast<std::size_t>(N); ++k) sum -= k < j ? l[i * N + k] * l[j * N + k] : S(0);
       l[i * N + j] = sum / pivot;
     }
   }
