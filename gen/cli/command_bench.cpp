@@ -354,16 +354,16 @@ int run_sim2real_bench(const BenchOptions& o) {
         inj.joint = static_cast<int>(random() % static_cast<unsigned>(n));
         const double unit = unit_size(inj.effect, closed);
         inj.size = inj.effect == "torque_gain" ? 1.0 + unit : unit;
-        // Scale so the effect is `fraction` of the torque RMS where it acts (a second one half as big).
+        // Scale so the effect is `fraction` of the torque RMS on the joint where it is largest (a
+        // second one half as big): an offset of a shoulder joint changes the elbow's gravity
+        // torque more than its own, and sized on its own joint a "second, half as big" offset
+        // was the larger effect of its case.
         diagnose::EffectSize size;
         if (!measure(inj, size)) continue;  // a probe the plant refused
         const double share = e == 0 ? k.fraction : 0.5 * k.fraction;
-        auto j = static_cast<Eigen::Index>(inj.joint);
-        if (!diagnose::acts_on_one_joint(inj.effect)) {
-          size.effect_rms.cwiseQuotient(size.clean_rms.cwiseMax(1e-12)).maxCoeff(&j);
-          inj.joint = static_cast<int>(j);
-        }
-        const double ratio = size.effect_rms[j] / std::max(size.clean_rms[j], 1e-12);
+        Eigen::Index j = 0;
+        const double ratio = size.effect_rms.cwiseQuotient(size.clean_rms.cwiseMax(1e-12)).maxCoeff(&j);
+        if (!diagnose::acts_on_one_joint(inj.effect)) inj.joint = static_cast<int>(j);
         if (ratio < 1e-3) continue;  // e.g. an offset of the vertical yaw axis: no torque at all
         const double scale = share / ratio;
         inj.size = inj.effect == "torque_gain" ? 1.0 + unit * scale : unit * scale;
