@@ -462,6 +462,27 @@ Effect without_fitted(const Effect& e, const std::vector<std::string>& fitted) {
   });
 }
 
+// `chosen` narrowed to the joints `kept`, its candidate stored in `store`. A profile effect's
+// point is chosen again on those joints: the point that suited every joint together (a Stribeck
+// scale bent to fit a Coulomb friction of another joint) need not suit these.
+Candidate narrowed_at_best_point(const Effect& chosen, const std::vector<int>& kept, const std::vector<Effect>& effects,
+                                 const std::vector<std::string>& fitted, std::deque<Effect>& store,
+                                 const Eigen::MatrixXd& accepted, const Eigen::VectorXd& r0,
+                                 const Eigen::VectorXd& baseline, const Eigen::VectorXd& weight,
+                                 const Eigen::VectorXd& away, Eigen::Index n) {
+  std::optional<Candidate> best;
+  for (const Effect& whole : effects) {
+    if (chosen.profile_name.empty() || whole.name != chosen.name) continue;
+    store.push_back(narrowed(without_fitted(whole, fitted), kept));
+    Candidate c = evaluate(store.back(), accepted, r0, baseline, weight, n);
+    if (is_friction(whole)) c.away_shrink = shrink_where(c, baseline, weight, away, n);
+    if (!best || point_key(c) > point_key(*best)) best = std::move(c);
+  }
+  if (best) return *best;
+  store.push_back(narrowed(chosen, kept));
+  return evaluate(store.back(), accepted, r0, baseline, weight, n);
+}
+
 // Once every effect is in: all of them fitted together, each per-joint effect narrowed once more
 // to the joints its own columns still carry (an offset of joint 3 that only stood in for a gain
 // of joint 5 until the gain came in is dropped), and every effect's parameters read from that
@@ -654,22 +675,8 @@ Diagnosis diagnose(const Dataset& d, const pipeline::Derivation& derivation) {
         if (kept.empty()) {
           r.joints.clear();
         } else {
-          // A profile effect's point is chosen again on the kept joints: the point that suited
-          // every joint together (a Stribeck scale bent to fit a Coulomb friction of another
-          // joint) need not suit these.
-          std::optional<Candidate> best_point;
-          for (const Effect& whole : effects) {
-            if (pick->effect->profile_name.empty() || whole.name != pick->effect->name) continue;
-            narrowed_effects.push_back(narrowed(without_fitted(whole, fitted), kept));
-            Candidate c = evaluate(narrowed_effects.back(), accepted, r0, baseline, weight, n);
-            if (is_friction(whole)) c.away_shrink = shrink_where(c, baseline, weight, away, n);
-            if (!best_point || point_key(c) > point_key(*best_point)) best_point = std::move(c);
-          }
-          if (!best_point) {
-            narrowed_effects.push_back(narrowed(*pick->effect, kept));
-            best_point = evaluate(narrowed_effects.back(), accepted, r0, baseline, weight, n);
-          }
-          narrowed_candidates.push_back(std::move(*best_point));
+          narrowed_candidates.push_back(narrowed_at_best_point(*pick->effect, kept, effects, fitted, narrowed_effects,
+                                                               accepted, r0, baseline, weight, away, n));
           r = describe(narrowed_candidates.back(), before, accepted.cols(), out.gap.torque_rms);
           rejected.push_back(pick);  // the un-narrowed one is not an alternative of its narrowed self
           // Narrowed, it may explain less than the next candidate of another kind, which then
