@@ -53,13 +53,8 @@ TEST(BlindBenchCase, PumaFrictionTurningOverDifferentlyAtReversalsIsNotAnEffect)
 TEST(BlindBenchCase, PandaStribeckBesideASmallerCoulombOfAnotherJointLeads) {
   static const std::unique_ptr<pipeline::Derivation> panda =
       derive_file(std::filesystem::path(DYNCC_SOURCE_DIR) / "robots" / "panda.yaml");
-  Injection stribeck, coulomb;
-  stribeck.effect = "stribeck_friction";
-  stribeck.joint = 0;
-  stribeck.size = 0.0604;
-  coulomb.effect = "coulomb_friction";
-  coulomb.joint = 3;
-  coulomb.size = 0.205;
+  const Injection stribeck{.effect = "stribeck_friction", .joint = 0, .size = 0.0604};
+  const Injection coulomb{.effect = "coulomb_friction", .joint = 3, .size = 0.205};
   diagnose::SyntheticOptions options;
   options.rate = 500;
   options.seed = 23U * 1000U + 29U;

@@ -78,13 +78,8 @@ TEST_P(InjectedEffect, IsNamedLocatedAndSized) {
 // Coulomb columns of joint 3 would half absorb a viscous friction of joint 3 if they were kept),
 // and both sizes are read from the joint fit of the two.
 TEST(InjectedEffects, TwoEffectsAreEachPlacedOnTheirOwnJoint) {
-  Injection coulomb, viscous;
-  coulomb.effect = "coulomb_friction";
-  coulomb.joint = 0;
-  coulomb.size = 0.1;
-  viscous.effect = "viscous_friction";
-  viscous.joint = 2;
-  viscous.size = 0.4;
+  const Injection coulomb{.effect = "coulomb_friction", .joint = 0, .size = 0.1};
+  const Injection viscous{.effect = "viscous_friction", .joint = 2, .size = 0.4};
   const auto path = temp_path("two_effects.csv");
   diagnose::write_synthetic_log(kraft(), {coulomb, viscous}, diagnose::SyntheticOptions{}, path);
   const diagnose::Dataset data = diagnose::build_dataset({diagnose::read_joint_log(path.string(), 3)}, kraft());
@@ -112,12 +107,8 @@ TEST(InjectedEffects, TwoEffectsAreEachPlacedOnTheirOwnJoint) {
 // lies in its span, and so does a payload): the two are named, each with its size, rather than
 // "inertial_parameters", which explains as much with four times the columns.
 TEST(InjectedEffects, TwoSmallEffectsAreNamedRatherThanTheInertialParameters) {
-  Injection rotor, payload;
-  rotor.effect = "rotor_inertia";
-  rotor.joint = 2;
-  rotor.size = 0.06;
-  payload.effect = "payload";
-  payload.size = 0.05;
+  const Injection rotor{.effect = "rotor_inertia", .joint = 2, .size = 0.06};
+  const Injection payload{.effect = "payload", .joint = 0, .size = 0.05};
   const auto path = temp_path("rotor_payload.csv");
   diagnose::SyntheticOptions options;
   options.rate = 81;
