@@ -113,6 +113,16 @@ Candidate evaluate(const Effect& effect, const Eigen::MatrixXd& accepted, const 
   return c;
 }
 
+// A candidate as the search compares profile points: evaluated, and for a friction also its
+// shrink where the velocity is away from zero (what point_key reads).
+Candidate evaluate_point(const Effect& effect, const Eigen::MatrixXd& accepted, const Eigen::VectorXd& r0,
+                         const Eigen::VectorXd& baseline, const Eigen::VectorXd& weight, const Eigen::VectorXd& away,
+                         Eigen::Index n) {
+  Candidate c = evaluate(effect, accepted, r0, baseline, weight, n);
+  if (is_friction(effect)) c.away_shrink = shrink_where(c, baseline, weight, away, n);
+  return c;
+}
+
 // How much a candidate explains (held out, per joint, over the torque RMS), and whether that is
 // material. On top of accepted effects, what its own columns carry in the joint fit counts too:
 // an earlier effect may have absorbed part of it (a payload's point leaning to mimic a joint's
@@ -474,12 +484,11 @@ Candidate narrowed_at_best_point(const Effect& chosen, const std::vector<int>& k
   for (const Effect& whole : effects) {
     if (chosen.profile_name.empty() || whole.name != chosen.name) continue;
     store.push_back(narrowed(without_fitted(whole, fitted), kept));
-    Candidate c = evaluate(store.back(), accepted, r0, baseline, weight, n);
-    if (is_friction(whole)) c.away_shrink = shrink_where(c, baseline, weight, away, n);
+    Candidate c = evaluate_point(store.back(), accepted, r0, baseline, weight, away, n);
     if (!best || point_key(c) > point_key(*best)) best = std::move(c);
   }
   if (best) return *best;
-  store.push_back(narrowed(chosen, kept));
+  store.push_back(narrowed(chosen, kept));  // not a profile effect: as it is
   return evaluate(store.back(), accepted, r0, baseline, weight, n);
 }
 
@@ -585,9 +594,8 @@ Diagnosis diagnose(const Dataset& d, const pipeline::Derivation& derivation) {
         if (use->columns.cols() == 0) continue;
       }
       const Effect& e = *use;
-      Candidate c = evaluate(e, accepted, r0, baseline, weight, n);
+      Candidate c = evaluate_point(e, accepted, r0, baseline, weight, away, n);
       c.plausible = plausible(describe(c, before, accepted.cols(), out.gap.torque_rms), derivation);
-      if (is_friction(e)) c.away_shrink = shrink_where(c, baseline, weight, away, n);
       auto it = best.find(e.name);
       const bool better = it == best.end() || (c.plausible && !it->second.plausible) ||
                           (c.plausible == it->second.plausible && point_key(c) > point_key(it->second));
