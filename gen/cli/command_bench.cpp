@@ -48,6 +48,8 @@ std::pair<std::string, double> measured_parameter(const diagnose::Injection& e) 
   if (e.effect == "rotor_inertia") return {fmt::format("ia{}", j), e.size};
   if (e.effect == "torque_gain") return {fmt::format("gain{}", j), e.size};
   if (e.effect == "position_offset") return {fmt::format("offset{}", j), e.size};
+  if (e.effect == "joint_elasticity") return {fmt::format("stiffness{}", j), e.size};
+  if (e.effect == "backlash") return {fmt::format("width{}", j), e.size};
   if (e.effect == "payload") return {"mass", e.size};
   if (e.effect == "contact") return {"", e.size};  // the fit's constant force + spring is not the injected peak
   return {"delay", e.size};
@@ -61,7 +63,18 @@ double unit_size(const std::string& effect, bool closed) {
   if (effect == "position_offset") return 0.02;
   if (effect == "payload") return 0.2;
   if (effect == "rotor_inertia") return 0.01;
+  if (effect == "backlash") return 0.01;            // rad of dead band
+  if (effect == "joint_elasticity") return 1000.0;  // N m/rad: the one effect that shrinks as its size grows
   return 0.1;
+}
+
+// The size that makes an effect `scale` times as large as it is at `size`: its torque is linear in
+// the size, except an elastic joint's, which goes as the compliance 1 / stiffness, and a gain's,
+// which goes as gain - 1.
+double scaled_size(const std::string& effect, double size, double scale) {
+  if (effect == "torque_gain") return 1.0 + (size - 1.0) * scale;
+  if (effect == "joint_elasticity") return size / scale;
+  return size * scale;
 }
 
 // Sizes a real arm could have; a draw outside is redrawn (a 20 % torque change by a 0.5 s delay
@@ -73,6 +86,7 @@ bool plausible_size(const diagnose::Injection& e, bool closed) {
   if (e.effect == "torque_gain") return e.size > 0.7 && e.size < 1.4;
   if (e.effect == "sensor_delay") return e.size <= 0.05;
   if (e.effect == "position_offset") return e.size <= 0.2;
+  if (e.effect == "backlash") return e.size <= 0.1;
   if (e.effect == "payload") return e.size <= 5.0;
   if (e.effect == "rotor_inertia") return e.size <= 3.0;
   if (e.effect == "contact") return e.size <= 500.0;
@@ -96,7 +110,8 @@ nlohmann::json effects_file(const std::vector<diagnose::Injection>& effects) {
     if (diagnose::acts_on_one_joint(e.effect)) {
       static const std::map<std::string, std::string> names = {
           {"coulomb_friction", "fc"}, {"viscous_friction", "fv"}, {"stribeck_friction", "fs"},
-          {"rotor_inertia", "ia"},    {"torque_gain", "gain"},    {"position_offset", "offset"}};
+          {"rotor_inertia", "ia"},    {"torque_gain", "gain"},    {"position_offset", "offset"},
+          {"backlash", "width"},      {"joint_elasticity", "stiffness"}};
       entry["joints"] = {e.joint + 1};
       entry["parameters"] = {{names.at(e.effect), {e.size}}};
     } else {
@@ -288,7 +303,7 @@ int run_sim2real_bench(const BenchOptions& o) {
   std::mt19937 random(o.seed);
   const double rates[] = {81, 200, 500, 1000};
   const double fractions[] = {0.05, 0.1, 0.2};
-  const std::vector<std::string> effects = diagnose::injectable_effects();
+  const std::vector<std::string> effects = o.effects.empty() ? diagnose::injectable_effects() : o.effects;
 
   std::map<std::string, Score> by_size;  // "none", "5%", "10%", "20%"
   std::map<std::string, Score> by_effect;
@@ -333,27 +348,31 @@ int run_sim2real_bench(const BenchOptions& o) {
         size = diagnose::effect_size(d, {inj}, so);
         return true;
       }
+      size.reversing = diagnose::minority_sign_share(clean.data.tau);
+      size.clean_rms = clean.torque_rms;
       if (auto modelled = modelled_effect_rms(clean.data, inj)) {
-        size.clean_rms = clean.torque_rms;
         size.effect_rms = *modelled;
         return true;
       }
       if (!run_excite(run, {inj}, dir / "probe.csv")) return false;
       const Seen probe = seen(d, dir / "probe.csv");
-      size.clean_rms = clean.torque_rms;
       size.effect_rms = diagnose::joint_rms(probe.residual - clean.residual, n);
       return true;
     };
     std::vector<std::string> pool = effects;
-    for (int e = 0; e < count; ++e) {
+    for (int e = 0; e < count && !pool.empty(); ++e) {
       // Draw until the effect is observable on the trajectory and its size physically plausible.
       for (int attempt = 0; attempt < 100; ++attempt) {
         const std::size_t pick = random() % pool.size();
         diagnose::Injection inj;
         inj.effect = pool[pick];
+        // Not yet in closed loop: on the Kraft's rigid plant (MuJoCo's joints are rigid) a 5 % spring
+        // of the elbow left a gap below the friction floor at reversals, read as none.
+        if (closed && (inj.effect == "backlash" || inj.effect == "joint_elasticity")) continue;
         inj.joint = static_cast<int>(random() % static_cast<unsigned>(n));
         const double unit = unit_size(inj.effect, closed);
         inj.size = inj.effect == "torque_gain" ? 1.0 + unit : unit;
+        const double drawn = inj.size;
         // Scale so the effect is `fraction` of the torque RMS on the joint where it is largest (a
         // second one half as big): an offset of a shoulder joint changes the elbow's gravity
         // torque more than its own, and sized on its own joint a "second, half as big" offset
@@ -365,9 +384,14 @@ int run_sim2real_bench(const BenchOptions& o) {
         const double ratio = size.effect_rms.cwiseQuotient(size.clean_rms.cwiseMax(1e-12)).maxCoeff(&j);
         if (!diagnose::acts_on_one_joint(inj.effect)) inj.joint = static_cast<int>(j);
         if (ratio < 1e-3) continue;  // e.g. an offset of the vertical yaw axis: no torque at all
-        const double scale = share / ratio;
-        inj.size = inj.effect == "torque_gain" ? 1.0 + unit * scale : unit * scale;
+        inj.size = scaled_size(inj.effect, drawn, share / ratio);
         if (!plausible_size(inj, closed)) continue;
+        // A spring that deflects by more than 0.05 rad RMS under the joint's own torque is a loose
+        // joint, not an elastic transmission.
+        if (inj.effect == "joint_elasticity" && size.clean_rms[inj.joint] / inj.size > 0.05) continue;
+        // A dead band whose torque never turns over is never crossed: the link sits on one side of
+        // it, and that is a position offset, not a backlash anyone could see.
+        if (inj.effect == "backlash" && size.reversing[inj.joint] < 0.1) continue;
         k.effects.push_back(inj);
         pool.erase(pool.begin() + static_cast<std::ptrdiff_t>(pick));
         break;

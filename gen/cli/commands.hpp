@@ -75,6 +75,7 @@ struct BenchOptions {
   std::string robots = "robots";
   std::vector<std::string> arms{"kraft", "puma560", "panda"};
   bool closed_loop = true;  // Kraft logs at 200 Hz and above from the closed-loop simulation (dyncc-sim excite)
+  std::vector<std::string> effects;  // the effects drawn from (default: every injectable one)
 };
 int run_sim2real_bench(const BenchOptions& o);
 

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "cli/commands.hpp"
+#include "diagnose/synthetic_log.hpp"
 
 namespace {
 
@@ -116,6 +117,8 @@ void add_output_commands(CLI::App& app, int& exit_code) {
   bench_cmd->add_option("--arms", bench->arms, "Descriptions to use (default kraft puma560 panda)");
   bench_cmd->add_option("--closed-loop", bench->closed_loop,
                         "Kraft logs at 200 Hz and above from the closed-loop simulation on both plants (default true)");
+  bench_cmd->add_option("--effects", bench->effects, "Effects to draw from (default all the bench can inject)")
+      ->check(CLI::IsMember(dyncc::diagnose::injectable_effects()));
   bench_cmd->callback([&exit_code, bench] { exit_code = run_sim2real_bench(*bench); });
 }
 

@@ -60,6 +60,14 @@ bool is_friction(const Effect& e) {
   return e.family == "coulomb_friction" || e.family == "viscous_friction" || e.family == "stribeck_friction";
 }
 
+// Effects that must also explain residual where the velocity is away from zero: friction, and a
+// transmission read on the motor side (its shift of the estimated velocity moves where the model's
+// friction turns over, so near reversals it fits how a plant's friction turns over: an effect-free
+// PUMA log whose friction sign is exact read as an elastic wrist of 36 N m/rad).
+bool judged_away_from_zero(const Effect& e) {
+  return is_friction(e) || e.family == "joint_elasticity" || e.family == "backlash";
+}
+
 // What picks a profile effect's point: a friction profile point (a Stribeck scale) is chosen
 // where the velocity is away from zero, because near zero any scale as small as the turn-over fits
 // how the friction turns over.
@@ -114,12 +122,12 @@ Candidate evaluate(const Effect& effect, const Eigen::MatrixXd& accepted, const 
 }
 
 // A candidate as the search compares profile points: evaluated, and for a friction also its
-// shrink where the velocity is away from zero (what point_key reads).
+// shrink where the velocity is away from zero (what point_key reads, and acceptance asks of some).
 Candidate evaluate_point(const Effect& effect, const Eigen::MatrixXd& accepted, const Eigen::VectorXd& r0,
                          const Eigen::VectorXd& baseline, const Eigen::VectorXd& weight, const Eigen::VectorXd& away,
                          Eigen::Index n) {
   Candidate c = evaluate(effect, accepted, r0, baseline, weight, n);
-  if (is_friction(effect)) c.away_shrink = shrink_where(c, baseline, weight, away, n);
+  if (judged_away_from_zero(effect)) c.away_shrink = shrink_where(c, baseline, weight, away, n);
   return c;
 }
 
@@ -267,8 +275,9 @@ RankedEffect describe(const Candidate& c, const Eigen::VectorXd& before, Eigen::
   return r;
 }
 
-// Physical sense of a fit: friction coefficients, a static friction excess, a payload's mass and
-// a contact's force and stiffness (a surface only pushes) are not negative (beyond twice their
+// Physical sense of a fit: friction coefficients, a static friction excess, a payload's mass, a
+// contact's force and stiffness (a surface only pushes), a joint's stiffness and a backlash's
+// width are not negative (beyond twice their
 // error). A fit that needs them negative is the effect's columns soaking up something else (e.g.
 // a Stribeck "excess" below Coulomb sharpening a mis-estimated sign near zero velocity).
 // A correction to a quantity the description already has (its Coulomb and viscous friction, its
@@ -286,7 +295,7 @@ bool plausible(const RankedEffect& r, const pipeline::Derivation& derivation) {
   for (const FittedParameter& p : r.parameters) {
     const bool non_negative = p.name.rfind("fc", 0) == 0 || p.name.rfind("fv", 0) == 0 || p.name.rfind("fs", 0) == 0 ||
                               p.name == "mass" || p.name.rfind("ia", 0) == 0 || p.name == "force" ||
-                              p.name == "stiffness" || p.name == "damping" || p.name.rfind("friction_", 0) == 0;
+                              p.name.rfind("stiffness", 0) == 0 || p.name.rfind("width", 0) == 0 || p.name == "damping" || p.name.rfind("friction_", 0) == 0;
     const double total = p.value + described(p.name, "fc", params.coulomb_of) +
                          described(p.name, "fv", params.viscous_of) + described(p.name, "ia", params.rotor_of);
     if (non_negative && total < -2.0 * p.error) return false;
@@ -611,7 +620,7 @@ Diagnosis diagnose(const Dataset& d, const pipeline::Derivation& derivation) {
       for (const Candidate* c : order) {
         out.ranking.push_back(describe(*c, before, accepted.cols(), out.gap.torque_rms));
         out.ranking.back().plausible = c->plausible;
-        if (is_friction(*c->effect)) out.ranking.back().shrink_away_from_zero = c->away_shrink;
+        if (judged_away_from_zero(*c->effect)) out.ranking.back().shrink_away_from_zero = c->away_shrink;
       }
       out.within_model = describe(best.at("inertial_parameters"), before, 0, out.gap.torque_rms);
     }
@@ -621,7 +630,7 @@ Diagnosis diagnose(const Dataset& d, const pipeline::Derivation& derivation) {
     // smallest scale) explains how the friction turns over, which the model cannot know.
     auto acceptable = [](const Candidate* c) {
       return c->plausible && c->shrink >= kAcceptShrink && c->low > 0.0 && c->material >= kMaterial &&
-             (!is_friction(*c->effect) || c->away_shrink >= kAcceptShrink);
+             (!judged_away_from_zero(*c->effect) || c->away_shrink >= kAcceptShrink);
     };
     // The best acceptable candidate leads (one above it whose interval still includes 0 does not
     // block it). Parsimony among equal explanations: two candidates are equal when what one

@@ -8,12 +8,13 @@
 
 #include "diagnose/contact.hpp"
 #include "diagnose/payload.hpp"
+#include "diagnose/shifted_positions.hpp"
 
 namespace dyncc::diagnose {
 namespace {
 
 constexpr double kStribeckScales[] = {0.02, 0.03, 0.045, 0.065, 0.1, 0.15, 0.22, 0.33, 0.5};  // rad/s, geometric
-constexpr double kTorqueSignScale = 0.05;  // N m, smoothed sign of the torque (backlash)
+constexpr double kTorqueSignScale = 0.01;  // N m, smoothed sign of the torque (backlash)
 // The smallest Stribeck velocity scale the data resolves on each joint. A static excess over the
 // scale vs lasts about 2 vs / |qdd| around a reversal; once that is shorter than the filter's time
 // scale, 1 / (2 pi cutoff), the excess is smeared into the same shape as any other mismatch at
@@ -43,28 +44,6 @@ Effect per_joint(const Dataset& d, const std::string& name, const std::string& p
   e.columns = Eigen::MatrixXd::Zero(d.samples() * d.n, d.n);
   for (Eigen::Index j = 0; j < d.n; ++j) {
     for (Eigen::Index s = 0; s < d.samples(); ++s) e.columns(s * d.n + j, j) = value(s, j);
-    e.parameters.push_back(fmt::format("{}{}", prefix, j + 1));
-    e.joint_of.push_back(static_cast<int>(j));
-    e.reading.push_back(reading);
-  }
-  return e;
-}
-
-// One column per joint j spread over all rows through the sensitivity: d tau_i / dq_j * w(s, j)
-// (an error in the position of joint j changes every joint's torque).
-template <typename F>
-Effect through_sensitivity(const Dataset& d, const std::string& name, const std::string& prefix, Reading reading,
-                           F weight) {
-  Effect e;
-  e.name = name;
-  e.family = name;
-  e.columns = Eigen::MatrixXd::Zero(d.samples() * d.n, d.n);
-  for (Eigen::Index j = 0; j < d.n; ++j) {
-    for (Eigen::Index s = 0; s < d.samples(); ++s) {
-      const double w = weight(s, j);
-      for (Eigen::Index i = 0; i < d.n; ++i)
-        e.columns(s * d.n + i, j) = d.dtau_dq[static_cast<std::size_t>(s)](i, j) * w;
-    }
     e.parameters.push_back(fmt::format("{}{}", prefix, j + 1));
     e.joint_of.push_back(static_cast<int>(j));
     e.reading.push_back(reading);
@@ -151,45 +130,6 @@ void add_contact_effects(const Dataset& d, const pipeline::Derivation& derivatio
   }
 }
 
-// A position offset is linear in the model only while it is small: its columns are re-linearised
-// about a first fit, as secants through the model at the shifted positions (exact at that
-// offset), twice (an offset of 0.2 rad read as 0.23 from the tangent is read to 1 % from them).
-constexpr double kLinearOffset = 0.01;  // rad: below it the tangent is as good as the secant
-
-void relinearise_offsets(const Dataset& d, const pipeline::Derivation& derivation, Effect& offset) {
-  const dyn::NumericModel& model = *derivation.numeric;
-  const Eigen::VectorXd nominal = model.nominal_standard_values();
-  const Eigen::Index n = d.n, samples = d.samples();
-  const Eigen::VectorXd w = stacked_weights(torque_weights(analysis_torque_rms(d)), offset.columns.rows());
-  Eigen::MatrixXd tau(samples, n);
-  auto torque = [&](Eigen::Index s, const Eigen::VectorXd& q) {
-    const Eigen::VectorXd qd = d.qd.row(s).transpose();
-    return model.evaluate({q, qd, qd, d.qdd.row(s).transpose()}, nominal, false).tau;
-  };
-  for (Eigen::Index s = 0; s < samples; ++s) tau.row(s) = torque(s, d.q.row(s).transpose()).transpose();
-  for (int pass = 0; pass < 2; ++pass) {
-    const Eigen::VectorXd delta =
-        (w.asDiagonal() * offset.columns).colPivHouseholderQr().solve(w.asDiagonal() * d.residual);
-    std::vector<Eigen::Index> shifted;
-    for (Eigen::Index j = 0; j < n; ++j) {
-      if (std::abs(delta[j]) > kLinearOffset && std::abs(delta[j]) < 1.0) shifted.push_back(j);
-    }
-    if (shifted.empty()) return;
-    Eigen::MatrixXd secants = Eigen::MatrixXd::Zero(samples * n, static_cast<Eigen::Index>(shifted.size()));
-    for (std::size_t k = 0; k < shifted.size(); ++k) {
-      const Eigen::Index j = shifted[k];
-      for (Eigen::Index s = 0; s < samples; ++s) {
-        Eigen::VectorXd q = d.q.row(s).transpose();
-        q[j] -= delta[j];  // measured = true + offset
-        secants.block(s * n, static_cast<Eigen::Index>(k), n, 1) = (torque(s, q) - tau.row(s).transpose()) / delta[j];
-      }
-    }
-    const Eigen::MatrixXd conditioned = d.condition(secants);
-    for (std::size_t k = 0; k < shifted.size(); ++k)
-      offset.columns.col(shifted[k]) = conditioned.col(static_cast<Eigen::Index>(k));
-  }
-}
-
 }  // namespace
 
 int payload_link(const pipeline::Derivation& derivation) {
@@ -246,16 +186,6 @@ std::vector<Effect> candidate_effects(const Dataset& d, const pipeline::Derivati
   // Measured torque = nominal / gain: residual = (1/gain - 1) tau_model.
   out.push_back(per_joint(d, "torque_gain", "gain", Reading::gain,
                           [&](Eigen::Index s, Eigen::Index j) { return d.model_tau(s, j); }));
-  // Measured position = true + offset: residual = -(d tau/dq) offset.
-  out.push_back(through_sensitivity(d, "position_offset", "offset", Reading::as_is,
-                                    [](Eigen::Index, Eigen::Index) { return -1.0; }));
-  // Motor-side position, link lags by tau / k: residual = -(d tau/dq) tau_j / k_j.
-  out.push_back(through_sensitivity(d, "joint_elasticity", "stiffness", Reading::reciprocal,
-                                    [&](Eigen::Index s, Eigen::Index j) { return -d.tau(s, j); }));
-  // Backlash of width b: the link sits b/2 behind the motor on the side the torque pushes.
-  out.push_back(through_sensitivity(d, "backlash", "width", Reading::as_is, [&](Eigen::Index s, Eigen::Index j) {
-    return -0.5 * std::tanh(d.tau(s, j) / kTorqueSignScale);
-  }));
   {  // Positions measured late by `delay`: the torque leads the model by delay * d tau_model/dt.
     Effect e;
     e.name = e.family = "sensor_delay";
@@ -279,9 +209,27 @@ std::vector<Effect> candidate_effects(const Dataset& d, const pipeline::Derivati
   }
   // Into the analysis rows, through the filter the logged torque went through.
   for (Effect& e : out) e.columns = d.condition(e.columns);
-  for (Effect& e : out) {
-    if (e.name == "position_offset") relinearise_offsets(d, derivation, e);
-  }
+  // Effects that shift the measured positions off the link's, by theta_j w_j(t) (conditioned as
+  // they are made: the columns are re-linearised at a first fit).
+  const ModelSensitivity sensitivity = model_sensitivity(d, derivation);
+  auto shifted = [&](const std::string& name, const std::string& prefix, Reading reading, auto w) {
+    Effect e = per_joint(d, name, prefix, reading, [](Eigen::Index, Eigen::Index) { return 0.0; });
+    Eigen::MatrixXd raw(d.samples(), d.n);
+    for (Eigen::Index s = 0; s < d.samples(); ++s) {
+      for (Eigen::Index j = 0; j < d.n; ++j) raw(s, j) = w(s, j);
+    }
+    fit_shift_columns(d, derivation, sensitivity, filtered_shift(d, raw), e);
+    out.push_back(std::move(e));
+  };
+  shifted("position_offset", "offset", Reading::as_is, [](Eigen::Index, Eigen::Index) { return 1.0; });
+  // Read on the motor side of a spring: the link lags the motor by the torque it carries over the
+  // stiffness.
+  const Eigen::MatrixXd& carried = sensitivity.transmitted;
+  shifted("joint_elasticity", "stiffness", Reading::reciprocal,
+          [&](Eigen::Index s, Eigen::Index j) { return carried(s, j); });
+  // Backlash of width b: the link sits b/2 behind the motor on the side that torque pushes.
+  shifted("backlash", "width", Reading::as_is,
+          [&](Eigen::Index s, Eigen::Index j) { return 0.5 * std::tanh(carried(s, j) / kTorqueSignScale); });
   add_payload_effects(d, derivation, out);  // conditioned as they are made (a load's point is fitted)
   add_contact_effects(d, derivation, out);  // conditioned as they are made (many profile points)
   return out;

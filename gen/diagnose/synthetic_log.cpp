@@ -79,7 +79,26 @@ struct Surface {
 
 struct Sample {
   Eigen::VectorXd logged_q, logged_tau, clean_tau;
+  Eigen::VectorXd transmitted;  // what a transmission between motor and link carries
 };
+
+// What the link itself needs at time t (its rigid bodies with the load, less the push of a table):
+// the torque a transmission between motor and link carries. The drive's friction acts on the
+// motor side, as in Spong's elastic joint.
+Eigen::VectorXd link_torque(const pipeline::Derivation& d, const std::vector<Injection>& effects, const Excitation& ex,
+                            const Eigen::VectorXd& loaded, const Surface& surface, double t) {
+  Eigen::VectorXd q, qd, qdd;
+  ex.at(t, q, qd, qdd);
+  const dyn::Evaluation rigid = d.numeric->evaluate({q, qd, qd, qdd}, loaded, false);
+  Eigen::VectorXd tau = rigid.tau - rigid.friction;
+  for (const Injection& e : effects) {
+    if (e.effect != "contact") continue;
+    const ContactGeometry::Basis b = ContactGeometry(d).at(q);
+    const double below = surface.height - ContactGeometry::height(b, surface.point);
+    if (below > 0) tau += e.size * below / surface.depth * ContactGeometry::lever(b, surface.point);
+  }
+  return tau;
+}
 
 Sample sample(const pipeline::Derivation& d, const std::vector<Injection>& effects, const Excitation& ex,
               const Eigen::VectorXd& nominal, const Eigen::VectorXd& loaded, const Surface& surface, double t) {
@@ -88,14 +107,26 @@ Sample sample(const pipeline::Derivation& d, const std::vector<Injection>& effec
   const dyn::NumericModel& model = *d.numeric;
   Sample s;
   s.clean_tau = model.evaluate({q, qd, qd, qdd}, nominal, false).tau;
-  s.logged_tau = model.evaluate({q, qd, qd, qdd}, loaded, false).tau;
+  s.transmitted = link_torque(d, effects, ex, loaded, surface, t);
   s.logged_q = q;
+  // The motor turns at the link's rate plus the spring's deflection rate; the friction of the
+  // drive is the motor's.
+  Eigen::VectorXd motor = qd;
+  for (const Injection& e : effects) {
+    if (e.effect != "joint_elasticity") continue;
+    constexpr double h = 1e-3;  // s
+    const Eigen::VectorXd rate =
+        (link_torque(d, effects, ex, loaded, surface, t + h) - link_torque(d, effects, ex, loaded, surface, t - h)) /
+        (2 * h);
+    motor[e.joint] += rate[e.joint] / e.size;
+  }
+  s.logged_tau = s.transmitted + model.evaluate({q, motor, motor, qdd}, loaded, false).friction;
   for (const Injection& e : effects) {
     const auto j = static_cast<Eigen::Index>(e.joint);
-    if (e.effect == "coulomb_friction") s.logged_tau[j] += e.size * sign(qd[j]);
-    if (e.effect == "viscous_friction") s.logged_tau[j] += e.size * qd[j];
+    if (e.effect == "coulomb_friction") s.logged_tau[j] += e.size * sign(motor[j]);
+    if (e.effect == "viscous_friction") s.logged_tau[j] += e.size * motor[j];
     if (e.effect == "stribeck_friction") {
-      s.logged_tau[j] += e.size * std::exp(-std::pow(qd[j] / kStribeckVelocity, 2)) * sign(qd[j]);
+      s.logged_tau[j] += e.size * std::exp(-std::pow(motor[j] / kStribeckVelocity, 2)) * sign(motor[j]);
     }
     if (e.effect == "rotor_inertia") s.logged_tau[j] += e.size * qdd[j];
     if (e.effect == "sensor_delay") {
@@ -103,11 +134,15 @@ Sample sample(const pipeline::Derivation& d, const std::vector<Injection>& effec
       ex.at(t - e.size, s.logged_q, qd2, qdd2);
     }
     if (e.effect == "position_offset") s.logged_q[j] += e.size;
-    if (e.effect == "contact") {
-      const ContactGeometry::Basis b = ContactGeometry(d).at(q);
-      const double below = surface.height - ContactGeometry::height(b, surface.point);
-      if (below > 0) s.logged_tau += e.size * below / surface.depth * ContactGeometry::lever(b, surface.point);
-    }
+  }
+  // The position is read on the motor side of a transmission that is not rigid: a spring of
+  // stiffness k deflects by the torque it carries over k, a dead band of width b leaves the link
+  // b/2 behind the motor on the side that torque pushes (the crossing of the gap, where the link
+  // is free for an instant, is not simulated).
+  for (const Injection& e : effects) {
+    const auto j = static_cast<Eigen::Index>(e.joint);
+    if (e.effect == "joint_elasticity") s.logged_q[j] += s.transmitted[j] / e.size;
+    if (e.effect == "backlash") s.logged_q[j] += 0.5 * e.size * sign(s.transmitted[j]);
   }
   for (const Injection& e : effects) {  // the logged command: the motor gives gain * it
     if (e.effect == "torque_gain") s.logged_tau[e.joint] /= e.size;
@@ -161,12 +196,22 @@ struct Scene {
 }  // namespace
 
 std::vector<std::string> injectable_effects() {
-  return {"coulomb_friction", "viscous_friction", "stribeck_friction", "payload", "torque_gain",
-          "sensor_delay",     "position_offset",  "rotor_inertia",     "contact"};
+  return {"coulomb_friction", "viscous_friction", "stribeck_friction", "payload",          "torque_gain",
+          "sensor_delay",     "position_offset",  "rotor_inertia",     "contact",          "joint_elasticity",
+          "backlash"};
 }
 
 bool acts_on_one_joint(const std::string& effect) {
   return effect != "payload" && effect != "sensor_delay" && effect != "contact" && effect != "none";
+}
+
+Eigen::VectorXd minority_sign_share(const Eigen::MatrixXd& values) {
+  Eigen::VectorXd out(values.cols());
+  for (Eigen::Index j = 0; j < values.cols(); ++j) {
+    const double positive = static_cast<double>((values.col(j).array() > 0).count());
+    out[j] = std::min(positive, static_cast<double>(values.rows()) - positive) / static_cast<double>(values.rows());
+  }
+  return out;
 }
 
 EffectSize effect_size(const pipeline::Derivation& d, const std::vector<Injection>& effects,
@@ -179,7 +224,7 @@ EffectSize effect_size(const pipeline::Derivation& d, const std::vector<Injectio
   // As the diagnosis sees them: through its zero-phase low-pass (a Stribeck pulse at a reversal
   // and a Coulomb step lose different shares of their RMS to it).
   const int samples = 2000;
-  Eigen::MatrixXd clean(samples, n), change(samples, n);
+  Eigen::MatrixXd clean(samples, n), change(samples, n), transmitted(samples, n);
   for (int i = 0; i < samples; ++i) {
     const double t = o.duration * i / samples;
     const Sample s = sample(d, effects, ex, nominal, carried(o, t) ? loaded : nominal, scene.surface, t);
@@ -189,10 +234,11 @@ EffectSize effect_size(const pipeline::Derivation& d, const std::vector<Injectio
     Eigen::VectorXd lq = s.logged_q;
     const Eigen::VectorXd model_at_logged = d.numeric->evaluate({lq, qd, qd, qdd}, nominal, false).tau;
     clean.row(i) = s.clean_tau.transpose();
+    transmitted.row(i) = s.transmitted.transpose();
     change.row(i) = (s.logged_tau - model_at_logged).transpose();
   }
   const double rate = samples / o.duration, cutoff = std::min(rate / 8, kDiagnosisCutoff);
-  EffectSize out{Eigen::VectorXd::Zero(n), Eigen::VectorXd::Zero(n)};
+  EffectSize out{Eigen::VectorXd::Zero(n), Eigen::VectorXd::Zero(n), minority_sign_share(transmitted)};
   for (Eigen::Index j = 0; j < n; ++j) {
     const Eigen::VectorXd c = zero_phase_lowpass(clean.col(j), cutoff, rate);
     const Eigen::VectorXd e = zero_phase_lowpass(change.col(j), cutoff, rate);

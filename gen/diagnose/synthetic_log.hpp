@@ -15,10 +15,11 @@ namespace dyncc::diagnose {
 
 struct Injection {
   std::string effect = "none";  // coulomb_friction, viscous_friction, stribeck_friction, payload, torque_gain,
-                                // sensor_delay, position_offset, rotor_inertia, contact
+                                // sensor_delay, position_offset, rotor_inertia, contact,
+                                // joint_elasticity, backlash
   int joint = 0;                // 0-based, for per-joint effects
   double size = 0;  // fc / excess (N m), fv (N m s), mass (kg), gain, delay (s), offset (rad), inertia (kg m^2),
-                    // peak contact force (N)
+                    // peak contact force (N), stiffness (N m/rad), backlash width (rad)
 };
 
 struct SyntheticOptions {
@@ -46,7 +47,11 @@ bool acts_on_one_joint(const std::string& effect);
 /// low-pass: as the diagnosis sees them.
 struct EffectSize {
   Eigen::VectorXd clean_rms, effect_rms;
+  Eigen::VectorXd reversing;  // per joint, the share of the time the torque its transmission carries has its
+                              // less common sign
 };
+/// The share of the rows of each column that have the column's less common sign.
+Eigen::VectorXd minority_sign_share(const Eigen::MatrixXd& values);
 EffectSize effect_size(const pipeline::Derivation& d, const std::vector<Injection>& effects, const SyntheticOptions& o);
 
 /// Writes the log; throws std::runtime_error when it cannot.

@@ -1,0 +1,152 @@
+#include "diagnose/shifted_positions.hpp"
+
+#include <cmath>
+#include <vector>
+
+#include "diagnose/signals.hpp"
+
+namespace dyncc::diagnose {
+namespace {
+
+constexpr double kLinearShift = 0.01;    // rad: below it the tangent is as good as the secant
+constexpr double kVelocityStep = 1e-6;   // rad/s, for the torque's derivative by a velocity
+constexpr double kLargestShift = 1.0;    // rad: a fit beyond this is not a shift of the positions
+
+// The nominal model's torque without its Coulomb friction. A shift of the velocity moves where the
+// friction turns over, by a few mrad/s around a reversal, which a smoothed sign of an estimated
+// velocity cannot place (see sign_floor in diagnosis.cpp): through the sign's slope it made spikes
+// at every reversal of a swinging torque's joint, larger than the rest of the column. Coulomb
+// friction does not depend on the positions, so only that spurious part is left out.
+class ModelTorque {
+ public:
+  explicit ModelTorque(const pipeline::Derivation& derivation)
+      : model_(*derivation.numeric), nominal_(model_.nominal_standard_values()) {
+    const auto n = static_cast<Eigen::Index>(derivation.robot.coordinates.size());
+    coulomb_ = model_
+                   .evaluate({Eigen::VectorXd::Zero(n), Eigen::VectorXd::Ones(n), Eigen::VectorXd::Zero(n),
+                              Eigen::VectorXd::Zero(n)},
+                             nominal_, false)
+                   .friction;
+  }
+  [[nodiscard]] Eigen::VectorXd at(const Eigen::VectorXd& q, const Eigen::VectorXd& qd, const Eigen::VectorXd& qdd,
+                                   Eigen::MatrixXd* mass = nullptr, Eigen::VectorXd* friction = nullptr) const {
+    dyn::Evaluation e = model_.evaluate({q, qd, qd, qdd}, nominal_, false);
+    for (Eigen::Index j = 0; j < e.tau.size(); ++j) {
+      const double v = qd[j], sign = v > 0 ? 1.0 : (v < 0 ? -1.0 : 0.0);
+      e.tau[j] -= coulomb_[j] * sign;
+    }
+    if (mass != nullptr) *mass = e.H;
+    if (friction != nullptr) {  // the description's, Coulomb through the smoothed sign
+      *friction = e.friction;
+      for (Eigen::Index j = 0; j < e.tau.size(); ++j) {
+        const double v = qd[j], sign = v > 0 ? 1.0 : (v < 0 ? -1.0 : 0.0);
+        (*friction)[j] += coulomb_[j] * (smooth_sign(v) - sign);
+      }
+    }
+    return e.tau;
+  }
+
+ private:
+  const dyn::NumericModel& model_;
+  Eigen::VectorXd nominal_, coulomb_;
+};
+
+// (model at the positions shifted back by theta w_j) - (model), over theta: S*n x 1.
+Eigen::VectorXd secant(const Dataset& d, const ModelTorque& model, const Shift& shift, const Eigen::MatrixXd& tau,
+                       Eigen::Index j, double theta) {
+  const Eigen::Index n = d.n;
+  Eigen::VectorXd column(d.samples() * n);
+  for (Eigen::Index s = 0; s < d.samples(); ++s) {
+    Eigen::VectorXd q = d.q.row(s).transpose(), qd = d.qd.row(s).transpose(), qdd = d.qdd.row(s).transpose();
+    q[j] -= theta * shift.w(s, j);  // measured = link + theta w
+    qd[j] -= theta * shift.wd(s, j);
+    qdd[j] -= theta * shift.wdd(s, j);
+    column.segment(s * n, n) = (model.at(q, qd, qdd) - tau.row(s).transpose()) / theta;
+  }
+  return column;
+}
+
+}  // namespace
+
+Shift filtered_shift(const Dataset& d, const Eigen::MatrixXd& raw) {
+  Shift out{Eigen::MatrixXd(raw.rows(), raw.cols()), Eigen::MatrixXd(raw.rows(), raw.cols()),
+            Eigen::MatrixXd(raw.rows(), raw.cols())};
+  for (const Dataset::Segment& g : d.segments) {
+    const Eigen::Index count = g.end - g.begin;
+    for (Eigen::Index j = 0; j < raw.cols(); ++j) {
+      const Eigen::VectorXd w = zero_phase_lowpass(raw.block(g.begin, j, count, 1), d.cutoff, g.rate);
+      const Eigen::VectorXd wd = derivative(w, 1.0 / g.rate);
+      out.w.block(g.begin, j, count, 1) = w;
+      out.wd.block(g.begin, j, count, 1) = wd;
+      out.wdd.block(g.begin, j, count, 1) = derivative(wd, 1.0 / g.rate);
+    }
+  }
+  return out;
+}
+
+ModelSensitivity model_sensitivity(const Dataset& d, const pipeline::Derivation& derivation) {
+  const ModelTorque model(derivation);
+  const Eigen::Index n = d.n, samples = d.samples();
+  ModelSensitivity m;
+  m.tau.resize(samples, n);
+  m.transmitted.resize(samples, n);
+  for (Eigen::Index s = 0; s < samples; ++s) {
+    const Eigen::VectorXd q = d.q.row(s).transpose(), qd = d.qd.row(s).transpose(), qdd = d.qdd.row(s).transpose();
+    Eigen::MatrixXd mass;
+    Eigen::VectorXd friction;
+    const Eigen::VectorXd tau = model.at(q, qd, qdd, &mass, &friction);
+    m.tau.row(s) = tau.transpose();
+    m.transmitted.row(s) = d.tau.row(s) - friction.transpose();
+    m.by_q.push_back(d.dtau_dq[static_cast<std::size_t>(s)]);
+    m.by_qdd.push_back(mass);  // the torque is H qdd + ...
+    // By velocity: the torque is quadratic in it (plus viscous friction), so a short forward
+    // difference is its derivative.
+    Eigen::MatrixXd by_qd(n, n);
+    for (Eigen::Index j = 0; j < n; ++j) {
+      Eigen::VectorXd faster = qd;
+      faster[j] += kVelocityStep;
+      by_qd.col(j) = (model.at(q, faster, qdd) - tau) / kVelocityStep;
+    }
+    m.by_qd.push_back(by_qd);
+  }
+  return m;
+}
+
+void fit_shift_columns(const Dataset& d, const pipeline::Derivation& derivation, const ModelSensitivity& m,
+                       const Shift& shift, Effect& effect) {
+  const ModelTorque model(derivation);
+  const Eigen::Index n = d.n, samples = d.samples();
+  const Eigen::MatrixXd& tau = m.tau;
+  const Eigen::VectorXd reach = shift.w.cwiseAbs().colwise().maxCoeff().transpose();  // largest |w_j|
+  Eigen::MatrixXd tangent(samples * n, n);
+  for (Eigen::Index s = 0; s < samples; ++s) {
+    const auto i = static_cast<std::size_t>(s);
+    for (Eigen::Index j = 0; j < n; ++j) {  // d/dtheta of the model at positions - theta w
+      tangent.block(s * n, j, n, 1) = -(m.by_q[i].col(j) * shift.w(s, j) + m.by_qd[i].col(j) * shift.wd(s, j) +
+                                        m.by_qdd[i].col(j) * shift.wdd(s, j));
+    }
+  }
+  effect.columns = d.condition(tangent);
+  const Eigen::VectorXd weights =
+      stacked_weights(torque_weights(analysis_torque_rms(d)), effect.columns.rows());
+  for (int pass = 0; pass < 2; ++pass) {
+    const Eigen::VectorXd theta =
+        (weights.asDiagonal() * effect.columns).colPivHouseholderQr().solve(weights.asDiagonal() * d.residual);
+    std::vector<Eigen::Index> shifted;
+    for (Eigen::Index j = 0; j < n; ++j) {
+      const double largest = std::abs(theta[j]) * reach[j];
+      if (largest > kLinearShift && largest < kLargestShift) shifted.push_back(j);
+    }
+    if (shifted.empty()) return;
+    Eigen::MatrixXd secants(samples * n, static_cast<Eigen::Index>(shifted.size()));
+    for (std::size_t k = 0; k < shifted.size(); ++k) {
+      secants.col(static_cast<Eigen::Index>(k)) = secant(d, model, shift, tau, shifted[k], theta[shifted[k]]);
+    }
+    const Eigen::MatrixXd conditioned = d.condition(secants);
+    for (std::size_t k = 0; k < shifted.size(); ++k) {
+      effect.columns.col(shifted[k]) = conditioned.col(static_cast<Eigen::Index>(k));
+    }
+  }
+}
+
+}  // namespace dyncc::diagnose

@@ -1,0 +1,46 @@
+// Effects that show as the measured positions being off the link's by a shift theta_j * w_j(t):
+// a constant offset (w = 1), an elastic transmission read on the motor side (w = the joint torque,
+// theta = 1 / stiffness), a backlash (w = half the sign of the torque, theta = the width). The
+// logged torque is the model's at the link's trajectory, so the residual is the model's change
+// when the positions AND their filtered velocity and acceleration move by the shift: a torque
+// that swings makes w swing, and the acceleration error it brings (H times w'') is as large as the
+// position error on joints whose torque is dynamic. The columns are that change per unit theta,
+// evaluated through the model itself, then re-linearised as secants at a first fit (exact at that
+// shift) where the shift is large.
+#pragma once
+
+#include <Eigen/Dense>
+#include <vector>
+
+#include "diagnose/dataset.hpp"
+#include "diagnose/effects.hpp"
+
+namespace dyncc::diagnose {
+
+/// The shift pattern w_j(t) on the evaluation rows (S x n), as the positions saw it: through the
+/// same zero-phase low-pass, with its first and second derivatives.
+struct Shift {
+  Eigen::MatrixXd w, wd, wdd;
+};
+Shift filtered_shift(const Dataset& d, const Eigen::MatrixXd& raw);
+
+/// The nominal model's torque without its Coulomb friction along the evaluation rows and its
+/// derivatives by each joint's position, velocity and acceleration there: what the
+/// tangents of every shift are made of, computed once for all the shift effects.
+struct ModelSensitivity {
+  Eigen::MatrixXd tau;                                   // S x n
+  // S x n: what a transmission between motor and link carries, the logged torque less the
+  // description's friction (Coulomb through the smoothed sign, viscous) at the estimated velocity:
+  // the drive's friction acts on the motor side.
+  Eigen::MatrixXd transmitted;
+  std::vector<Eigen::MatrixXd> by_q, by_qd, by_qdd;      // S of n x n
+};
+ModelSensitivity model_sensitivity(const Dataset& d, const pipeline::Derivation& derivation);
+
+/// The effect's columns (S*n x n, conditioned into the analysis rows) for the shift pattern:
+/// column j is (model at positions - theta_j w_j) - (model) over theta_j: the tangent first, then,
+/// twice, the secant at the fitted theta_j where the largest shift exceeds 0.01 rad.
+void fit_shift_columns(const Dataset& d, const pipeline::Derivation& derivation, const ModelSensitivity& m,
+                       const Shift& shift, Effect& effect);
+
+}  // namespace dyncc::diagnose
