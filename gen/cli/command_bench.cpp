@@ -303,7 +303,16 @@ int run_sim2real_bench(const BenchOptions& o) {
   std::mt19937 random(o.seed);
   const double rates[] = {81, 200, 500, 1000};
   const double fractions[] = {0.05, 0.1, 0.2};
-  const std::vector<std::string> effects = o.effects.empty() ? diagnose::injectable_effects() : o.effects;
+  // Backlash only when asked for: the generator moves the motor across the dead band at once, so a
+  // log has no friction of that crossing while the diagnosis' velocity estimate has a bump there
+  // (the model's friction at it does); on the PUMA's elbow, whose Coulomb friction is large, that
+  // mismatch was read as an elastic joint. The unit test on the Panda names and sizes it.
+  std::vector<std::string> effects = o.effects;
+  if (effects.empty()) {
+    for (const std::string& e : diagnose::injectable_effects()) {
+      if (e != "backlash") effects.push_back(e);
+    }
+  }
 
   std::map<std::string, Score> by_size;  // "none", "5%", "10%", "20%"
   std::map<std::string, Score> by_effect;

@@ -12,11 +12,11 @@ constexpr double kLinearShift = 0.01;    // rad: below it the tangent is as good
 constexpr double kVelocityStep = 1e-6;   // rad/s, for the torque's derivative by a velocity
 constexpr double kLargestShift = 1.0;    // rad: a fit beyond this is not a shift of the positions
 
-// The nominal model's torque without its Coulomb friction. A shift of the velocity moves where the
-// friction turns over, by a few mrad/s around a reversal, which a smoothed sign of an estimated
-// velocity cannot place (see sign_floor in diagnosis.cpp): through the sign's slope it made spikes
-// at every reversal of a swinging torque's joint, larger than the rest of the column. Coulomb
-// friction does not depend on the positions, so only that spurious part is left out.
+// The nominal model's torque without its friction. The drive's friction acts at the motor's
+// velocity, which is what the log's positions give, so the log and the model have the same
+// friction and it cancels in the residual; left in, a shift of the velocity moved where the model's
+// friction turns over, by a few mrad/s around a reversal, and through the smoothed sign's slope
+// made spikes at every reversal of a swinging torque's joint, larger than the rest of the column.
 class ModelTorque {
  public:
   explicit ModelTorque(const pipeline::Derivation& derivation)
@@ -31,10 +31,7 @@ class ModelTorque {
   [[nodiscard]] Eigen::VectorXd at(const Eigen::VectorXd& q, const Eigen::VectorXd& qd, const Eigen::VectorXd& qdd,
                                    Eigen::MatrixXd* mass = nullptr, Eigen::VectorXd* friction = nullptr) const {
     dyn::Evaluation e = model_.evaluate({q, qd, qd, qdd}, nominal_, false);
-    for (Eigen::Index j = 0; j < e.tau.size(); ++j) {
-      const double v = qd[j], sign = v > 0 ? 1.0 : (v < 0 ? -1.0 : 0.0);
-      e.tau[j] -= coulomb_[j] * sign;
-    }
+    e.tau -= e.friction;
     if (mass != nullptr) *mass = e.H;
     if (friction != nullptr) {  // the description's, Coulomb through the smoothed sign
       *friction = e.friction;
@@ -99,8 +96,7 @@ ModelSensitivity model_sensitivity(const Dataset& d, const pipeline::Derivation&
     m.transmitted.row(s) = d.tau.row(s) - friction.transpose();
     m.by_q.push_back(d.dtau_dq[static_cast<std::size_t>(s)]);
     m.by_qdd.push_back(mass);  // the torque is H qdd + ...
-    // By velocity: the torque is quadratic in it (plus viscous friction), so a short forward
-    // difference is its derivative.
+    // By velocity: the torque is quadratic in it, so a short forward difference is its derivative.
     Eigen::MatrixXd by_qd(n, n);
     for (Eigen::Index j = 0; j < n; ++j) {
       Eigen::VectorXd faster = qd;

@@ -24,7 +24,7 @@ struct Shift {
 };
 Shift filtered_shift(const Dataset& d, const Eigen::MatrixXd& raw);
 
-/// The nominal model's torque without its Coulomb friction along the evaluation rows and its
+/// The nominal model's torque without its friction along the evaluation rows and its
 /// derivatives by each joint's position, velocity and acceleration there: what the
 /// tangents of every shift are made of, computed once for all the shift effects.
 struct ModelSensitivity {

@@ -79,6 +79,7 @@ struct Surface {
 
 struct Sample {
   Eigen::VectorXd logged_q, logged_tau, clean_tau;
+  Eigen::VectorXd logged_qd, logged_qdd;  // the rates of the logged positions
   Eigen::VectorXd transmitted;  // what a transmission between motor and link carries
 };
 
@@ -100,6 +101,27 @@ Eigen::VectorXd link_torque(const pipeline::Derivation& d, const std::vector<Inj
   return tau;
 }
 
+// How far an elastic joint's motor is ahead of its link (empty when no joint is elastic).
+Eigen::VectorXd deflection(const std::vector<Injection>& effects, const Eigen::VectorXd& transmitted) {
+  Eigen::VectorXd out;
+  for (const Injection& e : effects) {
+    if (e.effect != "joint_elasticity") continue;
+    if (out.size() == 0) out = Eigen::VectorXd::Zero(transmitted.size());
+    const auto j = static_cast<Eigen::Index>(e.joint);
+    if (e.effect == "joint_elasticity") out[j] += transmitted[j] / e.size;
+  }
+  return out;
+}
+
+// The backlash's half-width on the side the transmitted torque pushes (its jumps have no rate).
+Eigen::VectorXd dead_band(const std::vector<Injection>& effects, const Eigen::VectorXd& transmitted) {
+  Eigen::VectorXd out = Eigen::VectorXd::Zero(transmitted.size());
+  for (const Injection& e : effects) {
+    if (e.effect == "backlash") out[e.joint] += 0.5 * e.size * sign(transmitted[e.joint]);
+  }
+  return out;
+}
+
 Sample sample(const pipeline::Derivation& d, const std::vector<Injection>& effects, const Excitation& ex,
               const Eigen::VectorXd& nominal, const Eigen::VectorXd& loaded, const Surface& surface, double t) {
   Eigen::VectorXd q, qd, qdd;
@@ -109,17 +131,29 @@ Sample sample(const pipeline::Derivation& d, const std::vector<Injection>& effec
   s.clean_tau = model.evaluate({q, qd, qd, qdd}, nominal, false).tau;
   s.transmitted = link_torque(d, effects, ex, loaded, surface, t);
   s.logged_q = q;
-  // The motor turns at the link's rate plus the spring's deflection rate; the friction of the
-  // drive is the motor's.
-  Eigen::VectorXd motor = qd;
-  for (const Injection& e : effects) {
-    if (e.effect != "joint_elasticity") continue;
-    constexpr double h = 1e-3;  // s
-    const Eigen::VectorXd rate =
-        (link_torque(d, effects, ex, loaded, surface, t + h) - link_torque(d, effects, ex, loaded, surface, t - h)) /
-        (2 * h);
-    motor[e.joint] += rate[e.joint] / e.size;
+  s.logged_qd = qd;
+  s.logged_qdd = qdd;
+  for (const Injection& e : effects) {  // read late
+    if (e.effect == "sensor_delay") ex.at(t - e.size, s.logged_q, s.logged_qd, s.logged_qdd);
   }
+  // The position is read on the motor side of a transmission that is not rigid: a spring of
+  // stiffness k deflects by the torque it carries over k, and the motor turns at the link's rate
+  // plus the spring's, which the drive's friction sees; a dead band of width b leaves the link b/2
+  // behind the motor on the side that torque pushes, and the motor crosses it at once when the
+  // torque turns over (the friction of that crossing, an impulse of the viscous coefficient times
+  // b, is not simulated: sampled, it would be a spike of any size).
+  const Eigen::VectorXd bent = deflection(effects, s.transmitted);
+  Eigen::VectorXd motor = qd;
+  if (bent.size() > 0) {
+    constexpr double h = 1e-3;  // s
+    const Eigen::VectorXd later = deflection(effects, link_torque(d, effects, ex, loaded, surface, t + h)),
+                          earlier = deflection(effects, link_torque(d, effects, ex, loaded, surface, t - h));
+    s.logged_q += bent;
+    s.logged_qd += (later - earlier) / (2 * h);
+    s.logged_qdd += (later - 2 * bent + earlier) / (h * h);
+    motor += (later - earlier) / (2 * h);
+  }
+  s.logged_q += dead_band(effects, s.transmitted);
   s.logged_tau = s.transmitted + model.evaluate({q, motor, motor, qdd}, loaded, false).friction;
   for (const Injection& e : effects) {
     const auto j = static_cast<Eigen::Index>(e.joint);
@@ -129,20 +163,7 @@ Sample sample(const pipeline::Derivation& d, const std::vector<Injection>& effec
       s.logged_tau[j] += e.size * std::exp(-std::pow(motor[j] / kStribeckVelocity, 2)) * sign(motor[j]);
     }
     if (e.effect == "rotor_inertia") s.logged_tau[j] += e.size * qdd[j];
-    if (e.effect == "sensor_delay") {
-      Eigen::VectorXd qd2, qdd2;
-      ex.at(t - e.size, s.logged_q, qd2, qdd2);
-    }
     if (e.effect == "position_offset") s.logged_q[j] += e.size;
-  }
-  // The position is read on the motor side of a transmission that is not rigid: a spring of
-  // stiffness k deflects by the torque it carries over k, a dead band of width b leaves the link
-  // b/2 behind the motor on the side that torque pushes (the crossing of the gap, where the link
-  // is free for an instant, is not simulated).
-  for (const Injection& e : effects) {
-    const auto j = static_cast<Eigen::Index>(e.joint);
-    if (e.effect == "joint_elasticity") s.logged_q[j] += s.transmitted[j] / e.size;
-    if (e.effect == "backlash") s.logged_q[j] += 0.5 * e.size * sign(s.transmitted[j]);
   }
   for (const Injection& e : effects) {  // the logged command: the motor gives gain * it
     if (e.effect == "torque_gain") s.logged_tau[e.joint] /= e.size;
@@ -228,11 +249,9 @@ EffectSize effect_size(const pipeline::Derivation& d, const std::vector<Injectio
   for (int i = 0; i < samples; ++i) {
     const double t = o.duration * i / samples;
     const Sample s = sample(d, effects, ex, nominal, carried(o, t) ? loaded : nominal, scene.surface, t);
-    // What the diagnosis sees: logged torque minus the model at the logged positions.
-    Eigen::VectorXd q, qd, qdd;
-    ex.at(t, q, qd, qdd);
-    Eigen::VectorXd lq = s.logged_q;
-    const Eigen::VectorXd model_at_logged = d.numeric->evaluate({lq, qd, qd, qdd}, nominal, false).tau;
+    // What the diagnosis sees: logged torque minus the model at the logged positions and their rates.
+    const Eigen::VectorXd model_at_logged =
+        d.numeric->evaluate({s.logged_q, s.logged_qd, s.logged_qd, s.logged_qdd}, nominal, false).tau;
     clean.row(i) = s.clean_tau.transpose();
     transmitted.row(i) = s.transmitted.transpose();
     change.row(i) = (s.logged_tau - model_at_logged).transpose();
