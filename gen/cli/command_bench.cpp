@@ -22,6 +22,7 @@
 #include "cli/robot_input.hpp"
 #include "diagnose/crossval.hpp"
 #include "diagnose/dataset.hpp"
+#include "diagnose/effects.hpp"
 #include "diagnose/joint_log.hpp"
 #include "diagnose/synthetic_log.hpp"
 
@@ -357,7 +358,7 @@ int run_sim2real_bench(const BenchOptions& o) {
         size = diagnose::effect_size(d, {inj}, so);
         return true;
       }
-      size.reversing = diagnose::minority_sign_share(clean.data.tau);
+      size.reversing = diagnose::minority_sign_share(clean.data.tau);  // the drive's friction included
       size.clean_rms = clean.torque_rms;
       if (auto modelled = modelled_effect_rms(clean.data, inj)) {
         size.effect_rms = *modelled;
@@ -400,7 +401,7 @@ int run_sim2real_bench(const BenchOptions& o) {
         if (inj.effect == "joint_elasticity" && size.clean_rms[inj.joint] / inj.size > 0.05) continue;
         // A dead band whose torque never turns over is never crossed: the link sits on one side of
         // it, and that is a position offset, not a backlash anyone could see.
-        if (inj.effect == "backlash" && size.reversing[inj.joint] < 0.1) continue;
+        if (inj.effect == "backlash" && size.reversing[inj.joint] < diagnose::kBacklashTurnOver) continue;
         k.effects.push_back(inj);
         pool.erase(pool.begin() + static_cast<std::ptrdiff_t>(pick));
         break;

@@ -9,6 +9,7 @@
 #include "diagnose/contact.hpp"
 #include "diagnose/payload.hpp"
 #include "diagnose/shifted_positions.hpp"
+#include "diagnose/signals.hpp"
 
 namespace dyncc::diagnose {
 namespace {
@@ -227,9 +228,12 @@ std::vector<Effect> candidate_effects(const Dataset& d, const pipeline::Derivati
   const Eigen::MatrixXd& carried = sensitivity.transmitted;
   shifted("joint_elasticity", "stiffness", Reading::reciprocal,
           [&](Eigen::Index s, Eigen::Index j) { return carried(s, j); });
-  // Backlash of width b: the link sits b/2 behind the motor on the side that torque pushes.
-  shifted("backlash", "width", Reading::as_is,
-          [&](Eigen::Index s, Eigen::Index j) { return 0.5 * std::tanh(carried(s, j) / kTorqueSignScale); });
+  // Backlash of width b: the link sits b/2 behind the motor on the side that torque pushes (on a
+  // joint where it turns over: elsewhere it is an offset, the simpler explanation).
+  const Eigen::VectorXd turning = minority_sign_share(carried);
+  shifted("backlash", "width", Reading::as_is, [&](Eigen::Index s, Eigen::Index j) {
+    return turning[j] >= kBacklashTurnOver ? 0.5 * std::tanh(carried(s, j) / kTorqueSignScale) : 0.0;
+  });
   add_payload_effects(d, derivation, out);  // conditioned as they are made (a load's point is fitted)
   add_contact_effects(d, derivation, out);  // conditioned as they are made (many profile points)
   return out;

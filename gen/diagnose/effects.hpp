@@ -36,6 +36,12 @@ struct Effect {
   std::string family;  // effects of one family are alternatives of each other
 };
 
+/// A backlash shows only on a joint whose transmitted torque turns over: with its less common sign
+/// less than this share of the time, the link sits on one side of the dead band, which is a
+/// position offset (the diagnosis leaves such a joint's backlash column out; the bench does not
+/// draw it).
+inline constexpr double kBacklashTurnOver = 0.1;
+
 /// The payload link: the deepest link without children (ties: the heaviest), where a tool or a
 /// hook carries a load.
 int payload_link(const pipeline::Derivation& derivation);

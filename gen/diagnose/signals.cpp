@@ -142,4 +142,13 @@ Audit audit_log(const JointLog& log) {
   return a;
 }
 
+Eigen::VectorXd minority_sign_share(const Eigen::MatrixXd& values) {
+  Eigen::VectorXd out(values.cols());
+  for (Eigen::Index j = 0; j < values.cols(); ++j) {
+    const double positive = static_cast<double>((values.col(j).array() > 0).count());
+    out[j] = std::min(positive, static_cast<double>(values.rows()) - positive) / static_cast<double>(values.rows());
+  }
+  return out;
+}
+
 }  // namespace dyncc::diagnose

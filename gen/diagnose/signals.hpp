@@ -21,6 +21,10 @@ Eigen::VectorXd derivative(const Eigen::VectorXd& x, double dt);
 /// Linear interpolation of the columns of `values` (at times `t`) onto `grid`.
 Eigen::MatrixXd interpolate(const Eigen::VectorXd& t, const Eigen::MatrixXd& values, const Eigen::VectorXd& grid);
 
+/// The share of the rows of each column that have the column's less common sign (how much of the
+/// time a joint's torque has turned over).
+Eigen::VectorXd minority_sign_share(const Eigen::MatrixXd& values);
+
 struct JointAudit {
   double quantum = 0;         // position quantisation step (rad or m); 0 = none detected
   double position_noise = 0;  // std of position noise (sample to sample)

@@ -226,15 +226,6 @@ bool acts_on_one_joint(const std::string& effect) {
   return effect != "payload" && effect != "sensor_delay" && effect != "contact" && effect != "none";
 }
 
-Eigen::VectorXd minority_sign_share(const Eigen::MatrixXd& values) {
-  Eigen::VectorXd out(values.cols());
-  for (Eigen::Index j = 0; j < values.cols(); ++j) {
-    const double positive = static_cast<double>((values.col(j).array() > 0).count());
-    out[j] = std::min(positive, static_cast<double>(values.rows()) - positive) / static_cast<double>(values.rows());
-  }
-  return out;
-}
-
 EffectSize effect_size(const pipeline::Derivation& d, const std::vector<Injection>& effects,
                        const SyntheticOptions& o) {
   const Scene scene(d, effects, o);

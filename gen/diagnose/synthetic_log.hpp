@@ -50,8 +50,7 @@ struct EffectSize {
   Eigen::VectorXd reversing;  // per joint, the share of the time the torque its transmission carries has its
                               // less common sign
 };
-/// The share of the rows of each column that have the column's less common sign.
-Eigen::VectorXd minority_sign_share(const Eigen::MatrixXd& values);
+
 EffectSize effect_size(const pipeline::Derivation& d, const std::vector<Injection>& effects, const SyntheticOptions& o);
 
 /// Writes the log; throws std::runtime_error when it cannot.
