@@ -35,8 +35,8 @@ const pipeline::Derivation& arm(const std::string& name) {
 
 // The diagnosis of an open-loop log with one injected effect; the fitted value of `parameter` in
 // the first selected effect, which must be `effect` on `joint` (1-based) alone.
-double named_and_fitted(const std::string& robot, const Injection& injected, const std::string& parameter,
-                        double rate, unsigned seed) {
+double named_and_fitted(const std::string& robot, const Injection& injected, const std::string& parameter, double rate,
+                        unsigned seed) {
   const pipeline::Derivation& d = arm(robot);
   diagnose::SyntheticOptions options;
   options.rate = rate;

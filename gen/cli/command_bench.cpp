@@ -87,7 +87,7 @@ bool plausible_size(const diagnose::Injection& e, bool closed) {
   if (e.effect == "torque_gain") return e.size > 0.7 && e.size < 1.4;
   if (e.effect == "sensor_delay") return e.size <= 0.05;
   if (e.effect == "position_offset") return e.size <= 0.2;
-  if (e.effect == "backlash") return e.size <= 0.1;
+  if (e.effect == "backlash") return e.size <= 2 * diagnose::kLargestDeflection;
   if (e.effect == "payload") return e.size <= 5.0;
   if (e.effect == "rotor_inertia") return e.size <= 3.0;
   if (e.effect == "contact") return e.size <= 500.0;
@@ -110,8 +110,8 @@ nlohmann::json effects_file(const std::vector<diagnose::Injection>& effects) {
     nlohmann::json entry = {{"effect", e.effect}};
     if (diagnose::acts_on_one_joint(e.effect)) {
       static const std::map<std::string, std::string> names = {
-          {"coulomb_friction", "fc"}, {"viscous_friction", "fv"}, {"stribeck_friction", "fs"},
-          {"rotor_inertia", "ia"},    {"torque_gain", "gain"},    {"position_offset", "offset"},
+          {"coulomb_friction", "fc"}, {"viscous_friction", "fv"},       {"stribeck_friction", "fs"},
+          {"rotor_inertia", "ia"},    {"torque_gain", "gain"},          {"position_offset", "offset"},
           {"backlash", "width"},      {"joint_elasticity", "stiffness"}};
       entry["joints"] = {e.joint + 1};
       entry["parameters"] = {{names.at(e.effect), {e.size}}};
@@ -398,7 +398,8 @@ int run_sim2real_bench(const BenchOptions& o) {
         if (!plausible_size(inj, closed)) continue;
         // A spring that deflects by more than 0.05 rad RMS under the joint's own torque is a loose
         // joint, not an elastic transmission.
-        if (inj.effect == "joint_elasticity" && size.clean_rms[inj.joint] / inj.size > 0.05) continue;
+        if (inj.effect == "joint_elasticity" && size.clean_rms[inj.joint] / inj.size > diagnose::kLargestDeflection)
+          continue;
         // A dead band whose torque never turns over is never crossed: the link sits on one side of
         // it, and that is a position offset, not a backlash anyone could see.
         if (inj.effect == "backlash" && size.reversing[inj.joint] < diagnose::kBacklashTurnOver) continue;

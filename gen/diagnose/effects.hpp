@@ -41,6 +41,10 @@ struct Effect {
 /// position offset (the diagnosis leaves such a joint's backlash column out; the bench does not
 /// draw it).
 inline constexpr double kBacklashTurnOver = 0.1;
+/// rad: the most a transmission plausibly gives way, RMS under its joint's torque (a spring), or
+/// half of it (a dead band's width is at most twice this); beyond, a joint is loose or the
+/// description wrong. The bench draws within it, the diagnosis refuses fits beyond it.
+inline constexpr double kLargestDeflection = 0.05;
 
 /// The payload link: the deepest link without children (ties: the heaviest), where a tool or a
 /// hook carries a load.

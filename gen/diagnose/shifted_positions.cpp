@@ -8,9 +8,9 @@
 namespace dyncc::diagnose {
 namespace {
 
-constexpr double kLinearShift = 0.01;    // rad: below it the tangent is as good as the secant
-constexpr double kVelocityStep = 1e-6;   // rad/s, for the torque's derivative by a velocity
-constexpr double kLargestShift = 1.0;    // rad: a fit beyond this is not a shift of the positions
+constexpr double kLinearShift = 0.01;   // rad: below it the tangent is as good as the secant
+constexpr double kVelocityStep = 1e-6;  // rad/s, for the torque's derivative by a velocity
+constexpr double kLargestShift = 1.0;   // rad: a fit beyond this is not a shift of the positions
 
 // The nominal model's torque without its friction. The drive's friction acts at the motor's
 // velocity, which is what the log's positions give, so the log and the model have the same
@@ -123,8 +123,7 @@ void fit_shift_columns(const Dataset& d, const pipeline::Derivation& derivation,
     }
   }
   effect.columns = d.condition(tangent);
-  const Eigen::VectorXd weights =
-      stacked_weights(torque_weights(analysis_torque_rms(d)), effect.columns.rows());
+  const Eigen::VectorXd weights = stacked_weights(torque_weights(analysis_torque_rms(d)), effect.columns.rows());
   for (int pass = 0; pass < 2; ++pass) {
     const Eigen::VectorXd theta =
         (weights.asDiagonal() * effect.columns).colPivHouseholderQr().solve(weights.asDiagonal() * d.residual);

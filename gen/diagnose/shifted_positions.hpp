@@ -28,12 +28,12 @@ Shift filtered_shift(const Dataset& d, const Eigen::MatrixXd& raw);
 /// derivatives by each joint's position, velocity and acceleration there: what the
 /// tangents of every shift are made of, computed once for all the shift effects.
 struct ModelSensitivity {
-  Eigen::MatrixXd tau;                                   // S x n
+  Eigen::MatrixXd tau;  // S x n
   // S x n: what a transmission between motor and link carries, the logged torque less the
   // description's friction (Coulomb through the smoothed sign, viscous) at the estimated velocity:
   // the drive's friction acts on the motor side.
   Eigen::MatrixXd transmitted;
-  std::vector<Eigen::MatrixXd> by_q, by_qd, by_qdd;      // S of n x n
+  std::vector<Eigen::MatrixXd> by_q, by_qd, by_qdd;  // S of n x n
 };
 ModelSensitivity model_sensitivity(const Dataset& d, const pipeline::Derivation& derivation);
 

@@ -80,7 +80,7 @@ struct Surface {
 struct Sample {
   Eigen::VectorXd logged_q, logged_tau, clean_tau;
   Eigen::VectorXd logged_qd, logged_qdd;  // the rates of the logged positions
-  Eigen::VectorXd transmitted;  // what a transmission between motor and link carries
+  Eigen::VectorXd transmitted;            // what a transmission between motor and link carries
 };
 
 // What the link itself needs at time t (its rigid bodies with the load, less the push of a table):
@@ -217,9 +217,9 @@ struct Scene {
 }  // namespace
 
 std::vector<std::string> injectable_effects() {
-  return {"coulomb_friction", "viscous_friction", "stribeck_friction", "payload",          "torque_gain",
-          "sensor_delay",     "position_offset",  "rotor_inertia",     "contact",          "joint_elasticity",
-          "backlash"};
+  return {"coulomb_friction", "viscous_friction", "stribeck_friction", "payload",
+          "torque_gain",      "sensor_delay",     "position_offset",   "rotor_inertia",
+          "contact",          "joint_elasticity", "backlash"};
 }
 
 bool acts_on_one_joint(const std::string& effect) {
