@@ -12,6 +12,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <map>
 #include <memory>
 #include <nlohmann/json.hpp>
@@ -263,6 +264,55 @@ std::string score_tables(const std::map<std::string, Score>& by_size, const std:
 
 }  // namespace
 
+// A case's hidden effects: `count` of them from `pool`, the first `fraction` of the torque RMS on
+// the joint where it is largest and a second half as big, each drawn again until it is observable
+// on the trajectory and its size physically plausible. `measure` sizes a drawn effect (false: the
+// plant refused it).
+using Measure = std::function<bool(const diagnose::Injection&, diagnose::EffectSize&)>;
+std::vector<diagnose::Injection> draw_effects(std::mt19937& random, std::vector<std::string> pool, int count,
+                                              double fraction, int n, bool closed, const Measure& measure) {
+  std::vector<diagnose::Injection> drawn_effects;
+  for (int e = 0; e < count && !pool.empty(); ++e) {
+    // Draw until the effect is observable on the trajectory and its size physically plausible.
+    for (int attempt = 0; attempt < 100; ++attempt) {
+      const std::size_t pick = random() % pool.size();
+      diagnose::Injection inj;
+      inj.effect = pool[pick];
+      // Not yet in closed loop: on the Kraft's rigid plant (MuJoCo's joints are rigid) a 5 % spring
+      // of the elbow left a gap below the friction floor at reversals, read as none.
+      if (closed && (inj.effect == "backlash" || inj.effect == "joint_elasticity")) continue;
+      inj.joint = static_cast<int>(random() % static_cast<unsigned>(n));
+      const double unit = unit_size(inj.effect, closed);
+      inj.size = inj.effect == "torque_gain" ? 1.0 + unit : unit;
+      const double drawn = inj.size;
+      // Scale so the effect is `fraction` of the torque RMS on the joint where it is largest (a
+      // second one half as big): an offset of a shoulder joint changes the elbow's gravity
+      // torque more than its own, and sized on its own joint a "second, half as big" offset
+      // was the larger effect of its case.
+      diagnose::EffectSize size;
+      if (!measure(inj, size)) continue;  // a probe the plant refused
+      const double share = e == 0 ? fraction : 0.5 * fraction;
+      Eigen::Index j = 0;
+      const double ratio = size.effect_rms.cwiseQuotient(size.clean_rms.cwiseMax(1e-12)).maxCoeff(&j);
+      if (!diagnose::acts_on_one_joint(inj.effect)) inj.joint = static_cast<int>(j);
+      if (ratio < 1e-3) continue;  // e.g. an offset of the vertical yaw axis: no torque at all
+      inj.size = scaled_size(inj.effect, drawn, share / ratio);
+      if (!plausible_size(inj, closed)) continue;
+      // A spring that deflects by more than 0.05 rad RMS under the joint's own torque is a loose
+      // joint, not an elastic transmission.
+      if (inj.effect == "joint_elasticity" && size.clean_rms[inj.joint] / inj.size > diagnose::kLargestDeflection)
+        continue;
+      // A dead band whose torque never turns over is never crossed: the link sits on one side of
+      // it, and that is a position offset, not a backlash anyone could see.
+      if (inj.effect == "backlash" && size.reversing[inj.joint] < diagnose::kBacklashTurnOver) continue;
+      drawn_effects.push_back(inj);
+      pool.erase(pool.begin() + static_cast<std::ptrdiff_t>(pick));
+      break;
+    }
+  }
+  return drawn_effects;
+}
+
 // A payload is carried over the whole log, from a pick-up to a put-down, or from a pick-up on (a
 // generator of its own, seeded by the case: the draws of the cases stay as they were).
 void draw_carrying(diagnose::SyntheticOptions& so) {
@@ -369,45 +419,7 @@ int run_sim2real_bench(const BenchOptions& o) {
       size.effect_rms = diagnose::joint_rms(probe.residual - clean.residual, n);
       return true;
     };
-    std::vector<std::string> pool = effects;
-    for (int e = 0; e < count && !pool.empty(); ++e) {
-      // Draw until the effect is observable on the trajectory and its size physically plausible.
-      for (int attempt = 0; attempt < 100; ++attempt) {
-        const std::size_t pick = random() % pool.size();
-        diagnose::Injection inj;
-        inj.effect = pool[pick];
-        // Not yet in closed loop: on the Kraft's rigid plant (MuJoCo's joints are rigid) a 5 % spring
-        // of the elbow left a gap below the friction floor at reversals, read as none.
-        if (closed && (inj.effect == "backlash" || inj.effect == "joint_elasticity")) continue;
-        inj.joint = static_cast<int>(random() % static_cast<unsigned>(n));
-        const double unit = unit_size(inj.effect, closed);
-        inj.size = inj.effect == "torque_gain" ? 1.0 + unit : unit;
-        const double drawn = inj.size;
-        // Scale so the effect is `fraction` of the torque RMS on the joint where it is largest (a
-        // second one half as big): an offset of a shoulder joint changes the elbow's gravity
-        // torque more than its own, and sized on its own joint a "second, half as big" offset
-        // was the larger effect of its case.
-        diagnose::EffectSize size;
-        if (!measure(inj, size)) continue;  // a probe the plant refused
-        const double share = e == 0 ? k.fraction : 0.5 * k.fraction;
-        Eigen::Index j = 0;
-        const double ratio = size.effect_rms.cwiseQuotient(size.clean_rms.cwiseMax(1e-12)).maxCoeff(&j);
-        if (!diagnose::acts_on_one_joint(inj.effect)) inj.joint = static_cast<int>(j);
-        if (ratio < 1e-3) continue;  // e.g. an offset of the vertical yaw axis: no torque at all
-        inj.size = scaled_size(inj.effect, drawn, share / ratio);
-        if (!plausible_size(inj, closed)) continue;
-        // A spring that deflects by more than 0.05 rad RMS under the joint's own torque is a loose
-        // joint, not an elastic transmission.
-        if (inj.effect == "joint_elasticity" && size.clean_rms[inj.joint] / inj.size > diagnose::kLargestDeflection)
-          continue;
-        // A dead band whose torque never turns over is never crossed: the link sits on one side of
-        // it, and that is a position offset, not a backlash anyone could see.
-        if (inj.effect == "backlash" && size.reversing[inj.joint] < diagnose::kBacklashTurnOver) continue;
-        k.effects.push_back(inj);
-        pool.erase(pool.begin() + static_cast<std::ptrdiff_t>(pick));
-        break;
-      }
-    }
+    k.effects = draw_effects(random, effects, count, k.fraction, n, closed, measure);
     if (closed) {
       fs::remove(dir / "probe.csv");
       if (!run_excite(run, k.effects, dir / "log.csv")) {
