@@ -26,6 +26,7 @@ TEST(DiagnoseCommand, BadInputExitsTwoAndNamesThePlace) {
        "--map: 'time': expected THEIR_NAME=OUR_NAME"},
       {"diagnose /nonexistent.yaml " + quoted(missing), "/nonexistent.yaml"},
       {"diagnose " + quoted(kKraft), "LOGS is required"},
+      {"sim2real-bench --effects friction", "--effects: friction not in {coulomb_friction"},
   };
   for (const Case& c : cases) {
     const DynccRun run = run_dyncc(c.arguments);

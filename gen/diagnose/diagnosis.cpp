@@ -14,6 +14,7 @@
 namespace dyncc::diagnose {
 namespace {
 
+constexpr double kFarthestPoint = 2.0;  // m: a payload or contact point farther from its link is implausible
 constexpr double kAcceptShrink = 0.05;  // an effect must remove 5 % of the weighted held-out error
 constexpr double kMaterial = 0.015;     // ... and explain at least 1.5 % of some joint's torque RMS
 constexpr double kJointShrink = 0.10;   // ... and 10 % on a joint to count as acting there
@@ -314,7 +315,14 @@ bool plausible(const RankedEffect& r, const pipeline::Derivation& derivation, co
       if (band && p.value - 2.0 * p.error > 4.0 * kLargestDeflection) return false;
     }
   }
-  return true;
+  // A load or a contact is on the link, not metres away: a first moment with next to no mass (a
+  // payload of 0.1 g at 46 m on a Kraft log whose forearm was read 0.05 rad off) is the columns
+  // mimicking another effect.
+  Eigen::Vector3d point = Eigen::Vector3d::Zero();
+  for (const FittedParameter& p : r.parameters) {
+    if (p.name.size() == 7 && p.name.rfind("point_", 0) == 0) point[p.name[6] - 'x'] = p.value;
+  }
+  return point.norm() <= kFarthestPoint;
 }
 
 double normal_cdf(double x) { return 0.5 * std::erfc(-x / std::sqrt(2.0)); }
@@ -703,7 +711,13 @@ Diagnosis diagnose(const Dataset& d, const pipeline::Derivation& derivation) {
       for (const Candidate* c : order) {
         if (usable(c) && as_good_as(*c, *top) && c->effect->columns.cols() < pick->effect->columns.cols()) pick = c;
       }
+      const Candidate* larger = pick;
       pick = first_of_a_smaller_pair(pick, order, best, usable, accepted, r0, baseline, weight, n);
+      // The first of a smaller pair that stands in for a large set leads even where another
+      // candidate alone explains more than it alone: the pair explains as much as the set (seed 37
+      // case 24: a rotor inertia of joint 1 and an offset of joint 3 on a closed-loop Kraft log
+      // gave way to a torque gain, then to the inertial parameters, which explain both).
+      const bool of_a_pair = pick != larger;
       r = describe(*pick, before, accepted.cols(), out.gap.torque_rms);
       if (!r.joints.empty() && per_joint(*pick->effect)) {
         const std::vector<int> kept = own_joints_of(*pick, r);
@@ -723,7 +737,8 @@ Diagnosis diagnose(const Dataset& d, const pipeline::Derivation& derivation) {
             return usable(c) && c->effect->family != pick->effect->family &&
                    !spans(c->effect->columns, mine.effect->columns);
           });
-          if (next != order.end() && (*next)->shrink > mine.shrink + 0.5 * (mine.high - mine.low) + 0.01) continue;
+          if (!of_a_pair && next != order.end() && (*next)->shrink > mine.shrink + 0.5 * (mine.high - mine.low) + 0.01)
+            continue;
           pick = &mine;
         }
       }
