@@ -459,6 +459,21 @@ const Candidate* first_of_a_smaller_pair(const Candidate* chosen, const std::vec
   return chosen;
 }
 
+// " or B or C": the usable candidates as good as the leading one whose columns are not a superset
+// of the chosen ones (the same explanation) nor more than twice as many.
+template <typename Usable>
+std::string alternatives(const Candidate& chosen, const Candidate& top, const std::vector<const Candidate*>& order,
+                         Usable usable) {
+  std::string out;
+  for (const Candidate* c : order) {
+    if (c == &chosen || !usable(c) || !as_good_as(*c, top)) continue;
+    if (spans(c->effect->columns, chosen.effect->columns)) continue;
+    if (c->effect->columns.cols() > 2 * chosen.effect->columns.cols()) continue;
+    out += " or " + c->effect->name;
+  }
+  return out;
+}
+
 // The effect's columns of the given joints only (0-based); the same effect, narrowed.
 template <typename Keep>
 Effect kept_columns(const Effect& e, Keep keep_column) {
@@ -749,14 +764,8 @@ Diagnosis diagnose(const Dataset& d, const pipeline::Derivation& derivation) {
       chosen = pick;
     }
     if (chosen == nullptr) break;
-    auto equal = [&](const Candidate* c) { return as_good_as(*c, *top); };
     r.accepted = true;
-    for (const Candidate* c : order) {
-      if (c == chosen || !usable(c) || !equal(c)) continue;
-      if (spans(c->effect->columns, chosen->effect->columns)) continue;  // a superset: the same explanation
-      if (c->effect->columns.cols() > 2 * chosen->effect->columns.cols()) continue;
-      r.effect += " or " + c->effect->name;
-    }
+    r.effect += alternatives(*chosen, *top, order, usable);
     out.selected.push_back(r);
     out.accepted_effects.push_back(*chosen->effect);
     taken.push_back(chosen->effect->family);
