@@ -283,12 +283,17 @@ RankedEffect describe(const Candidate& c, const Eigen::VectorXd& before, Eigen::
 // a Stribeck "excess" below Coulomb sharpening a mis-estimated sign near zero velocity).
 // A correction to a quantity the description already has (its Coulomb and viscous friction, its
 // rotor inertia) is judged with it: the total must not be negative, the correction may be.
+// The joint (0-based) of a per-joint parameter named prefix + number ("fc2", "stiffness3"), or -1.
+int joint_of_parameter(const std::string& name, const std::string& prefix) {
+  if (name.rfind(prefix, 0) != 0 || name.size() <= prefix.size()) return -1;
+  return std::atoi(name.c_str() + prefix.size()) - 1;
+}
+
 bool plausible(const RankedEffect& r, const pipeline::Derivation& derivation, const Eigen::VectorXd& torque_rms) {
   const Eigen::VectorXd nominal = derivation.numeric->nominal_standard_values();
   const auto& params = derivation.model.params;
   auto described = [&](const std::string& name, const char* prefix, const std::vector<int>& of) {
-    if (name.rfind(prefix, 0) != 0 || name.size() <= 2) return 0.0;
-    const int joint = std::atoi(name.c_str() + 2) - 1;
+    const int joint = joint_of_parameter(name, prefix);
     if (joint < 0 || joint >= static_cast<int>(of.size())) return 0.0;
     const int index = of[static_cast<std::size_t>(joint)];
     return index >= 0 ? nominal[index] : 0.0;
@@ -307,13 +312,12 @@ bool plausible(const RankedEffect& r, const pipeline::Derivation& derivation, co
     // torque, or a dead band wider than four times it (0.1 and 0.2 rad: twice what the bench
     // draws), is a loose joint or a wrong description (the TX40's wrist read as springs of 2-10
     // N m/rad, 0.3-0.6 rad under its torque, soaking up what the rotor inertias lack).
-    const bool spring = p.name.rfind("stiffness", 0) == 0 && p.name.size() > 9;
-    const bool band = p.name.rfind("width", 0) == 0 && p.name.size() > 5;
-    const int joint = spring || band ? std::atoi(p.name.c_str() + (spring ? 9 : 5)) - 1 : -1;
-    if (joint >= 0 && joint < torque_rms.size()) {
-      if (spring && torque_rms[joint] > 2.0 * kLargestDeflection * (p.value + 2.0 * p.error)) return false;
-      if (band && p.value - 2.0 * p.error > 4.0 * kLargestDeflection) return false;
+    const int spring = joint_of_parameter(p.name, "stiffness"), band = joint_of_parameter(p.name, "width");
+    if (spring >= 0 && spring < torque_rms.size() &&
+        torque_rms[spring] > 2.0 * kLargestDeflection * (p.value + 2.0 * p.error)) {
+      return false;
     }
+    if (band >= 0 && band < torque_rms.size() && p.value - 2.0 * p.error > 4.0 * kLargestDeflection) return false;
   }
   // A load or a contact is on the link, not metres away: a first moment with next to no mass (a
   // payload of 0.1 g at 46 m on a Kraft log whose forearm was read 0.05 rad off) is the columns

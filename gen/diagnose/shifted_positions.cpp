@@ -94,7 +94,6 @@ ModelSensitivity model_sensitivity(const Dataset& d, const pipeline::Derivation&
     const Eigen::VectorXd tau = model.at(q, qd, qdd, &mass, &friction);
     m.tau.row(s) = tau.transpose();
     m.transmitted.row(s) = d.tau.row(s) - friction.transpose();
-    m.by_q.push_back(d.dtau_dq[static_cast<std::size_t>(s)]);
     m.by_qdd.push_back(mass);  // the torque is H qdd + ...
     // By velocity: the torque is quadratic in it, so a short forward difference is its derivative.
     Eigen::MatrixXd by_qd(n, n);
@@ -118,7 +117,7 @@ void fit_shift_columns(const Dataset& d, const pipeline::Derivation& derivation,
   for (Eigen::Index s = 0; s < samples; ++s) {
     const auto i = static_cast<std::size_t>(s);
     for (Eigen::Index j = 0; j < n; ++j) {  // d/dtheta of the model at positions - theta w
-      tangent.block(s * n, j, n, 1) = -(m.by_q[i].col(j) * shift.w(s, j) + m.by_qd[i].col(j) * shift.wd(s, j) +
+      tangent.block(s * n, j, n, 1) = -(d.dtau_dq[i].col(j) * shift.w(s, j) + m.by_qd[i].col(j) * shift.wd(s, j) +
                                         m.by_qdd[i].col(j) * shift.wdd(s, j));
     }
   }

@@ -33,7 +33,7 @@ struct ModelSensitivity {
   // description's friction (Coulomb through the smoothed sign, viscous) at the estimated velocity:
   // the drive's friction acts on the motor side.
   Eigen::MatrixXd transmitted;
-  std::vector<Eigen::MatrixXd> by_q, by_qd, by_qdd;  // S of n x n
+  std::vector<Eigen::MatrixXd> by_qd, by_qdd;  // S of n x n (by position: Dataset::dtau_dq)
 };
 ModelSensitivity model_sensitivity(const Dataset& d, const pipeline::Derivation& derivation);
 
