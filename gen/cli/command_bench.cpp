@@ -354,10 +354,11 @@ int run_sim2real_bench(const BenchOptions& o) {
   std::mt19937 random(o.seed);
   const double rates[] = {81, 200, 500, 1000};
   const double fractions[] = {0.05, 0.1, 0.2};
-  // Backlash only when asked for: the generator moves the motor across the dead band at once, so a
-  // log has no friction of that crossing while the diagnosis' velocity estimate has a bump there
-  // (the model's friction at it does); on the PUMA's elbow, whose Coulomb friction is large, that
-  // mismatch was read as an elastic joint. The unit test on the Panda names and sizes it.
+  // Backlash only when asked for: where the drive's Coulomb friction is large (the PUMA's first
+  // joints, 6-26 N m), the motor's quick crossing of the dead band flips that friction for a few
+  // samples, which the diagnosis' velocity estimate (a 4 Hz low-pass) cannot follow; such logs are
+  // read as an elastic joint (1 of 6 PUMA backlash logs named; 6 of 6 with the friction zeroed).
+  // The unit test on the Panda names and sizes it.
   std::vector<std::string> effects = o.effects;
   if (effects.empty()) {
     for (const std::string& e : diagnose::injectable_effects()) {

@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <functional>
 #include <numbers>
+#include <optional>
 #include <random>
 #include <stdexcept>
 
@@ -113,11 +115,40 @@ Eigen::VectorXd deflection(const std::vector<Injection>& effects, const Eigen::V
   return out;
 }
 
-// The backlash's half-width on the side the transmitted torque pushes (its jumps have no rate).
-Eigen::VectorXd dead_band(const std::vector<Injection>& effects, const Eigen::VectorXd& transmitted) {
-  Eigen::VectorXd out = Eigen::VectorXd::Zero(transmitted.size());
+// A dead band of width b leaves the link b/2 behind the motor on the side the carried torque
+// pushes. When that torque turns over, the motor crosses the band in kCrossing seconds (a smooth
+// half-cosine from the turn): the motor's extra speed on the way is what the drive's friction sees.
+// What is not simulated: the link runs free while the motor crosses (it follows its trajectory).
+constexpr double kCrossing = 0.05;  // s
+
+struct DeadBand {
+  Eigen::VectorXd shift, rate, acceleration;  // of the motor against the link
+};
+
+DeadBand dead_band(const std::vector<Injection>& effects, const std::function<Eigen::VectorXd(double)>& carried,
+                   double t) {
+  const Eigen::VectorXd now = carried(t);
+  DeadBand out{Eigen::VectorXd::Zero(now.size()), Eigen::VectorXd::Zero(now.size()),
+               Eigen::VectorXd::Zero(now.size())};
+  std::optional<Eigen::VectorXd> before;
   for (const Injection& e : effects) {
-    if (e.effect == "backlash") out[e.joint] += 0.5 * e.size * sign(transmitted[e.joint]);
+    if (e.effect != "backlash") continue;
+    if (!before) before = carried(t - kCrossing);
+    const auto j = static_cast<Eigen::Index>(e.joint);
+    const double to = sign(now[j]), from = sign((*before)[j]), half = 0.5 * e.size;
+    if (to == from || to == 0 || from == 0) {
+      out.shift[j] += half * to;
+      continue;
+    }
+    double lo = t - kCrossing, hi = t;  // the turn: the carried torque has sign `from` at lo, `to` at hi
+    for (int k = 0; k < 30; ++k) {
+      const double mid = 0.5 * (lo + hi);
+      (sign(carried(mid)[j]) == from ? lo : hi) = mid;
+    }
+    const double phase = std::numbers::pi * (t - hi) / kCrossing, swing = half * (to - from);
+    out.shift[j] += half * from + swing * 0.5 * (1 - std::cos(phase));
+    out.rate[j] += swing * 0.5 * std::sin(phase) * std::numbers::pi / kCrossing;
+    out.acceleration[j] += swing * 0.5 * std::cos(phase) * std::pow(std::numbers::pi / kCrossing, 2);
   }
   return out;
 }
@@ -138,10 +169,7 @@ Sample sample(const pipeline::Derivation& d, const std::vector<Injection>& effec
   }
   // The position is read on the motor side of a transmission that is not rigid: a spring of
   // stiffness k deflects by the torque it carries over k, and the motor turns at the link's rate
-  // plus the spring's, which the drive's friction sees; a dead band of width b leaves the link b/2
-  // behind the motor on the side that torque pushes, and the motor crosses it at once when the
-  // torque turns over (the friction of that crossing, an impulse of the viscous coefficient times
-  // b, is not simulated: sampled, it would be a spike of any size).
+  // plus the spring's, which the drive's friction sees; likewise across a dead band (dead_band).
   const Eigen::VectorXd bent = deflection(effects, s.transmitted);
   Eigen::VectorXd motor = qd;
   if (bent.size() > 0) {
@@ -153,7 +181,12 @@ Sample sample(const pipeline::Derivation& d, const std::vector<Injection>& effec
     s.logged_qdd += (later - 2 * bent + earlier) / (h * h);
     motor += (later - earlier) / (2 * h);
   }
-  s.logged_q += dead_band(effects, s.transmitted);
+  const DeadBand band =
+      dead_band(effects, [&](double at) { return link_torque(d, effects, ex, loaded, surface, at); }, t);
+  s.logged_q += band.shift;
+  s.logged_qd += band.rate;
+  s.logged_qdd += band.acceleration;
+  motor += band.rate;
   s.logged_tau = s.transmitted + model.evaluate({q, motor, motor, qdd}, loaded, false).friction;
   for (const Injection& e : effects) {
     const auto j = static_cast<Eigen::Index>(e.joint);
