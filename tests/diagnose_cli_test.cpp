@@ -2,7 +2,10 @@
 // issue specifies, bad input, and a bench whose truth stays in files of their own.
 #include <gtest/gtest.h>
 
+#include <fmt/format.h>
+
 #include <fstream>
+#include <map>
 #include <nlohmann/json.hpp>
 
 #include "cli_support.hpp"
@@ -78,6 +81,53 @@ TEST(Sim2RealBench, WritesTruthApartAndDiagnosesEachLog) {
   std::ifstream first(out / "case000" / "diagnosis.json");
   EXPECT_EQ(nlohmann::json::parse(first)["verdict"]["effect"], "none");
   EXPECT_TRUE(std::filesystem::exists(out / "summary.md"));
+}
+
+
+// A closed-loop log of the Kraft arm (the MuJoCo plant, a Fourier reference at 200 Hz, the blind
+// bench's seed 37, case 39), simulated by `dyncc excite` and diagnosed from the file alone.
+nlohmann::json diagnose_excited(const std::string& name, const std::string& effects_json) {
+  std::string effects;
+  if (!effects_json.empty()) effects = " --effects " + quoted(write_text(name + ".effects.json", effects_json));
+  const auto log = output_path(name + ".csv"), json = output_path(name + ".json");
+  const DynccRun excite = run_dyncc("excite --plant mujoco --trajectory fourier --rate 200 --duration 60 --seed 37039" +
+                                    effects + " --out " + quoted(log));
+  EXPECT_EQ(excite.exit_code, 0) << excite.errors;
+  const DynccRun diagnosis = run_dyncc("diagnose " + quoted(kKraft) + " " + quoted(log) + " --json " + quoted(json));
+  EXPECT_EQ(diagnosis.exit_code, 0) << diagnosis.errors;
+  std::ifstream in(json);
+  return nlohmann::json::parse(in);
+}
+
+// Without a hidden effect the only gap is what the MuJoCo plant and the description differ by (a
+// few % of the base joint's torque). Its shape once fitted a 333 N m/rad spring on joint 1 that
+// gives way 0.9 mrad, under the 12-bit potentiometers' 1.5 mrad step: a shift the sensor cannot
+// resolve is not taken for a transmission effect.
+TEST(DiagnoseCommand, ClosedLoopKraftLogWithoutEffectsIsNone) {
+  const nlohmann::json d = diagnose_excited("clean_excite", "");
+  EXPECT_EQ(d["verdict"]["effect"], "none") << d["verdict"].dump();
+}
+
+// The same run with a rotor inertia on joint 3 and a torque gain of the same joint: the spring
+// that was also selected took 11 % of the rotor inertia (0.105 for 0.118); without it both are
+// within the bench's 10 %.
+TEST(DiagnoseCommand, ClosedLoopRotorInertiaBesideATorqueGainOfItsJoint) {
+  const double inertia = 0.11834, gain = 1.05502;
+  const nlohmann::json d = diagnose_excited(
+      "rotor_gain_excite",
+      fmt::format(R"({{"effects": [{{"effect": "rotor_inertia", "joints": [3], "parameters": {{"ia": [{}]}}}},
+                    {{"effect": "torque_gain", "joints": [3], "parameters": {{"gain": [{}]}}}}]}})",
+                  inertia, gain));
+  EXPECT_EQ(d["verdict"]["effect"], "rotor_inertia") << d["verdict"].dump();
+  EXPECT_EQ(d["verdict"]["joints"], nlohmann::json::array({3}));
+  std::map<std::string, double> fitted;
+  for (const auto& r : d["selected"]) {
+    for (const auto& p : r["parameters"]) fitted[p["name"]] = p["value"];
+  }
+  ASSERT_TRUE(fitted.count("ia3") && fitted.count("gain3")) << d["selected"].dump();
+  EXPECT_NEAR(fitted["ia3"], inertia, 0.1 * inertia);
+  EXPECT_NEAR(fitted["gain3"], gain, 0.1 * (gain - 1.0));
+  for (const auto& [name, value] : fitted) EXPECT_EQ(name.rfind("stiffness", 0), std::string::npos) << name;
 }
 
 }  // namespace
