@@ -158,6 +158,7 @@ Dataset build_dataset(const std::vector<JointLog>& logs, const pipeline::Derivat
   d.qdd.resize(total, n);
   d.tau.resize(total, n);
   d.model_tau.resize(total, n);
+  d.model_friction.resize(total, n);
   d.model_tau_rate.resize(total, n);
   const dyn::NumericModel& model = *derivation.numeric;
   const Eigen::VectorXd nominal = model.nominal_standard_values();
@@ -197,6 +198,7 @@ Dataset build_dataset(const std::vector<JointLog>& logs, const pipeline::Derivat
       const dyn::Evaluation e = model.evaluate(state, nominal);
       for (Eigen::Index j = 0; j < n; ++j) {
         const double v = c.qd(s, j), sign = v > 0 ? 1.0 : (v < 0 ? -1.0 : 0.0);
+        d.model_friction(row, j) = e.friction[j] + coulomb[j] * (smooth_sign(v) - sign);
         d.model_tau(row, j) = e.tau[j] + coulomb[j] * (smooth_sign(v) - sign);
       }
       d.standard.middleRows(row * n, n) = e.Y;

@@ -46,6 +46,7 @@ struct Dataset {
   std::vector<int> log_of;
   Eigen::MatrixXd q, qd, qdd, tau;  // tau only anti-aliased here
   Eigen::MatrixXd model_tau;        // nominal model (Coulomb with the smoothed sign)
+  Eigen::MatrixXd model_friction;   // its friction part (the description's, Coulomb smoothed alike)
   Eigen::MatrixXd model_tau_rate;   // d model_tau / dt
   Eigen::MatrixXd base_rigid;       // S*n x r': base regressor without friction columns
   std::vector<std::string> base_rigid_names;

@@ -20,32 +20,17 @@ constexpr double kLargestShift = 1.0;   // rad: a fit beyond this is not a shift
 class ModelTorque {
  public:
   explicit ModelTorque(const pipeline::Derivation& derivation)
-      : model_(*derivation.numeric), nominal_(model_.nominal_standard_values()) {
-    const auto n = static_cast<Eigen::Index>(derivation.robot.coordinates.size());
-    coulomb_ = model_
-                   .evaluate({Eigen::VectorXd::Zero(n), Eigen::VectorXd::Ones(n), Eigen::VectorXd::Zero(n),
-                              Eigen::VectorXd::Zero(n)},
-                             nominal_, false)
-                   .friction;
-  }
+      : model_(*derivation.numeric), nominal_(model_.nominal_standard_values()) {}
   [[nodiscard]] Eigen::VectorXd at(const Eigen::VectorXd& q, const Eigen::VectorXd& qd, const Eigen::VectorXd& qdd,
-                                   Eigen::MatrixXd* mass = nullptr, Eigen::VectorXd* friction = nullptr) const {
-    dyn::Evaluation e = model_.evaluate({q, qd, qd, qdd}, nominal_, false);
-    e.tau -= e.friction;
+                                   Eigen::MatrixXd* mass = nullptr) const {
+    const dyn::Evaluation e = model_.evaluate({q, qd, qd, qdd}, nominal_, false);
     if (mass != nullptr) *mass = e.H;
-    if (friction != nullptr) {  // the description's, Coulomb through the smoothed sign
-      *friction = e.friction;
-      for (Eigen::Index j = 0; j < e.tau.size(); ++j) {
-        const double v = qd[j], sign = v > 0 ? 1.0 : (v < 0 ? -1.0 : 0.0);
-        (*friction)[j] += coulomb_[j] * (smooth_sign(v) - sign);
-      }
-    }
-    return e.tau;
+    return e.tau - e.friction;
   }
 
  private:
   const dyn::NumericModel& model_;
-  Eigen::VectorXd nominal_, coulomb_;
+  Eigen::VectorXd nominal_;
 };
 
 // (model at the positions shifted back by theta w_j) - (model), over theta: S*n x 1.
@@ -90,10 +75,9 @@ ModelSensitivity model_sensitivity(const Dataset& d, const pipeline::Derivation&
   for (Eigen::Index s = 0; s < samples; ++s) {
     const Eigen::VectorXd q = d.q.row(s).transpose(), qd = d.qd.row(s).transpose(), qdd = d.qdd.row(s).transpose();
     Eigen::MatrixXd mass;
-    Eigen::VectorXd friction;
-    const Eigen::VectorXd tau = model.at(q, qd, qdd, &mass, &friction);
+    const Eigen::VectorXd tau = model.at(q, qd, qdd, &mass);
     m.tau.row(s) = tau.transpose();
-    m.transmitted.row(s) = d.tau.row(s) - friction.transpose();
+    m.transmitted.row(s) = d.tau.row(s) - d.model_friction.row(s);
     m.by_qdd.push_back(mass);  // the torque is H qdd + ...
     // By velocity: the torque is quadratic in it, so a short forward difference is its derivative.
     Eigen::MatrixXd by_qd(n, n);
