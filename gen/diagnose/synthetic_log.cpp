@@ -267,8 +267,11 @@ EffectSize effect_size(const pipeline::Derivation& d, const std::vector<Injectio
   const Eigen::VectorXd& nominal = scene.nominal;
   const Eigen::VectorXd& loaded = scene.loaded;
   // As the diagnosis sees them: through its zero-phase low-pass (a Stribeck pulse at a reversal
-  // and a Coulomb step lose different shares of their RMS to it).
-  const int samples = 2000;
+  // and a Coulomb step lose different shares of their RMS to it). Every 20 ms, or ten times
+  // across a dead band's crossing, which a coarser grid samples as a spike or misses.
+  const bool crossing =
+      std::any_of(effects.begin(), effects.end(), [](const Injection& e) { return e.effect == "backlash"; });
+  const int samples = crossing ? static_cast<int>(10 * o.duration / kCrossing) : 2000;
   Eigen::MatrixXd clean(samples, n), change(samples, n), transmitted(samples, n);
   for (int i = 0; i < samples; ++i) {
     const double t = o.duration * i / samples;
