@@ -1,8 +1,7 @@
 // `dyncc diagnose` and `dyncc sim2real-bench` from the command line: exit codes, the JSON the
 // issue specifies, bad input, and a bench whose truth stays in files of their own.
-#include <gtest/gtest.h>
-
 #include <fmt/format.h>
+#include <gtest/gtest.h>
 
 #include <fstream>
 #include <map>
@@ -82,7 +81,6 @@ TEST(Sim2RealBench, WritesTruthApartAndDiagnosesEachLog) {
   EXPECT_EQ(nlohmann::json::parse(first)["verdict"]["effect"], "none");
   EXPECT_TRUE(std::filesystem::exists(out / "summary.md"));
 }
-
 
 // A closed-loop log of the Kraft arm (the MuJoCo plant, a Fourier reference at 200 Hz, the blind
 // bench's seed 37, case 39), simulated by `dyncc excite` and diagnosed from the file alone.

@@ -128,8 +128,7 @@ struct DeadBand {
 DeadBand dead_band(const std::vector<Injection>& effects, const std::function<Eigen::VectorXd(double)>& carried,
                    double t) {
   const Eigen::VectorXd now = carried(t);
-  DeadBand out{Eigen::VectorXd::Zero(now.size()), Eigen::VectorXd::Zero(now.size()),
-               Eigen::VectorXd::Zero(now.size())};
+  DeadBand out{Eigen::VectorXd::Zero(now.size()), Eigen::VectorXd::Zero(now.size()), Eigen::VectorXd::Zero(now.size())};
   std::optional<Eigen::VectorXd> before;
   for (const Injection& e : effects) {
     if (e.effect != "backlash") continue;
@@ -181,8 +180,8 @@ Sample sample(const pipeline::Derivation& d, const std::vector<Injection>& effec
     s.logged_qdd += (later - 2 * bent + earlier) / (h * h);
     motor += (later - earlier) / (2 * h);
   }
-  const DeadBand band =
-      dead_band(effects, [&](double at) { return link_torque(d, effects, ex, loaded, surface, at); }, t);
+  const DeadBand band = dead_band(
+      effects, [&](double at) { return link_torque(d, effects, ex, loaded, surface, at); }, t);
   s.logged_q += band.shift;
   s.logged_qd += band.rate;
   s.logged_qdd += band.acceleration;
