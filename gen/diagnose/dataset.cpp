@@ -93,6 +93,8 @@ Eigen::VectorXd velocity_error(const Dataset& d) {
   return out;
 }
 
+Eigen::VectorXd friction_sign_velocity(const Dataset& d) { return velocity_error(d).cwiseMax(kSignVelocity); }
+
 Eigen::VectorXd away_from_zero_velocity(const Dataset& d) {
   const Eigen::VectorXd band = (2.0 * velocity_error(d)).cwiseMax(kTurnOverBand);
   Eigen::MatrixXd near_zero = Eigen::MatrixXd::Zero(d.samples() * d.n, 1);

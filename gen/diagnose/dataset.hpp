@@ -18,8 +18,10 @@ namespace dyncc::diagnose {
 /// Velocity scale (rad/s) over which Coulomb friction turns over, in the nominal model and in the
 /// friction effects alike: the sign of a filtered velocity estimate near zero is noise.
 inline constexpr double kSignVelocity = 0.002;
-/// The sign of a velocity as the friction model sees it, smoothed over kSignVelocity.
-inline double smooth_sign(double velocity) { return std::tanh(velocity / kSignVelocity); }
+/// The sign of a velocity smoothed over `scale` (rad/s).
+inline double smooth_sign(double velocity, double scale) { return std::tanh(velocity / scale); }
+/// The sign of a velocity as the nominal model's friction sees it, smoothed over kSignVelocity.
+inline double smooth_sign(double velocity) { return smooth_sign(velocity, kSignVelocity); }
 /// How a static friction excess fades with speed (Stribeck), over the velocity scale `scale`.
 inline double stribeck_fade(double velocity, double scale) {
   const double v = velocity / scale;
@@ -78,6 +80,13 @@ struct Dataset {
 /// the positions' noise and quantisation (the worst log) through the filter's bandwidth. A
 /// velocity this close to zero has no reliable sign.
 Eigen::VectorXd velocity_error(const Dataset& d);
+
+/// Per joint, the velocity (rad/s) over which the friction candidates' sign turns over: the
+/// velocity estimate's own error, not less than kSignVelocity. Where the estimate is noise (in a
+/// hold) the sign is not known, and the columns predict next to no friction instead of a random
+/// +-fc (on tele-operation logs with 1.5 mrad potentiometer steps one fold's holds swung the
+/// held-out interval below zero).
+Eigen::VectorXd friction_sign_velocity(const Dataset& d);
 
 /// Per stacked analysis row (A*n): 1 where joint i's velocity is away from zero, 0 where the band
 /// |qd| < max(kTurnOverBand, twice the velocity error) leaks into the row through the filter (its

@@ -159,7 +159,8 @@ std::vector<Effect> candidate_effects(const Dataset& d, const pipeline::Derivati
   std::vector<Effect> out;
   const Eigen::Index rows = d.samples() * d.n;
 
-  auto sign = [&](Eigen::Index s, Eigen::Index j) { return smooth_sign(d.qd(s, j)); };
+  const Eigen::VectorXd scale = friction_sign_velocity(d);
+  auto sign = [&](Eigen::Index s, Eigen::Index j) { return smooth_sign(d.qd(s, j), scale[j]); };
   out.push_back(per_joint(d, "coulomb_friction", "fc", Reading::as_is, sign));
   out.push_back(per_joint(d, "viscous_friction", "fv", Reading::as_is,
                           [&](Eigen::Index s, Eigen::Index j) { return d.qd(s, j); }));

@@ -25,6 +25,7 @@ SelectedResiduals selected_residuals(const Dataset& data, const Diagnosis& diagn
     fit.joint_of = e.joint_of;
     fit.values = cv.theta.segment(at, e.columns.cols());
     fit.profile = e.profile;
+    fit.sign_velocity = friction_sign_velocity(data);
     fit.contribution = e.columns * fit.values;
     out.effects.push_back(std::move(fit));
     at += e.columns.cols();

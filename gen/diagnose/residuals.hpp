@@ -20,6 +20,7 @@ struct EffectFit {
   std::vector<int> joint_of;            // per column: its joint (0-based), -1 shared
   Eigen::VectorXd values;               // per column: its coefficient in the joint fit on all rows
   double profile = 0;                   // the shape parameter of a profile effect (Stribeck's scale)
+  Eigen::VectorXd sign_velocity;        // per joint: over which a friction column's sign turns over
   Eigen::VectorXd contribution;         // A*n: the fitted part of the residual (columns * values)
 };
 

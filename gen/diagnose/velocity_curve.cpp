@@ -8,7 +8,8 @@ bool has_velocity_curve(const std::string& effect) {
 
 double velocity_curve(const EffectFit& fit, Eigen::Index joint, double velocity) {
   if (!has_velocity_curve(fit.effect)) return 0;
-  const double sign = smooth_sign(velocity);
+  const double sign =
+      joint < fit.sign_velocity.size() ? smooth_sign(velocity, fit.sign_velocity[joint]) : smooth_sign(velocity);
   double torque = 0;
   for (std::size_t k = 0; k < fit.parameters.size(); ++k) {
     if (fit.joint_of[k] != joint) continue;
