@@ -125,9 +125,9 @@ struct DeadBand {
   Eigen::VectorXd shift, rate, acceleration;  // of the motor against the link
 };
 
-DeadBand dead_band(const std::vector<Injection>& effects, const std::function<Eigen::VectorXd(double)>& carried,
-                   double t) {
-  const Eigen::VectorXd now = carried(t);
+// `now` is the carried torque at t; `carried` gives it at earlier times (only with a backlash).
+DeadBand dead_band(const std::vector<Injection>& effects, const Eigen::VectorXd& now,
+                   const std::function<Eigen::VectorXd(double)>& carried, double t) {
   DeadBand out{Eigen::VectorXd::Zero(now.size()), Eigen::VectorXd::Zero(now.size()), Eigen::VectorXd::Zero(now.size())};
   std::optional<Eigen::VectorXd> before;
   for (const Injection& e : effects) {
@@ -181,7 +181,7 @@ Sample sample(const pipeline::Derivation& d, const std::vector<Injection>& effec
     motor += (later - earlier) / (2 * h);
   }
   const DeadBand band = dead_band(
-      effects, [&](double at) { return link_torque(d, effects, ex, loaded, surface, at); }, t);
+      effects, s.transmitted, [&](double at) { return link_torque(d, effects, ex, loaded, surface, at); }, t);
   s.logged_q += band.shift;
   s.logged_qd += band.rate;
   s.logged_qdd += band.acceleration;
