@@ -95,5 +95,37 @@ TEST(BlindBenchCase, PumaTorqueGainLeadsTheSpringItIsPairedWith) {
   EXPECT_NEAR(c.fitted["stiffness3"], 194.138, 19.4);
 }
 
+// Case 44 of the blind seed 43 (Panda, 200 Hz): a rotor inertia of joint 4 (10 % of the torque)
+// and a spring of the same joint. The rotor inertias fitted over the arm took a negative
+// correction beyond twice its error on joint 3, so the whole candidate was implausible and the
+// spring was named alone first. A per-joint fit implausible on some joints only is judged on the
+// others.
+TEST(BlindBenchCase, PandaRotorInertiaIsNotLostToANegativeFitOfAnotherJoint) {
+  const Injection rotor{.effect = "rotor_inertia", .joint = 3, .size = 0.75219};
+  const Injection spring{.effect = "joint_elasticity", .joint = 3, .size = 276.144};
+  BenchCase c = diagnosed("panda", {rotor, spring}, 200, 43U * 1000U + 44U);
+  SCOPED_TRACE(diagnose::diagnosis_text(c.data, c.diagnosis));
+  // (The spring alone explains as much: "rotor_inertia or joint_elasticity".)
+  EXPECT_EQ(c.diagnosis.verdict.effect.rfind("rotor_inertia", 0), 0U) << c.diagnosis.verdict.effect;
+  EXPECT_EQ(c.diagnosis.verdict.joints, std::vector<int>{4});
+  EXPECT_NEAR(c.fitted["ia4"], 0.75219, 0.075);
+  EXPECT_NEAR(c.fitted["stiffness4"], 276.144, 27.6);
+}
+
+// Case 34 of the blind seed 47 (PUMA 560, 81 Hz): a Coulomb friction of joint 1 (20 % of the
+// torque) beside a sensor delay. The PUMA's first joint carries mostly its own friction, so a
+// torque gain of that joint explains the same (55.5 % both); the verdict named the gain alone,
+// because the alternative was counted with its columns on all six joints. Ties are reported as
+// such.
+TEST(BlindBenchCase, PumaCoulombFrictionThatATorqueGainMimicsIsAnAlternative) {
+  const Injection coulomb{.effect = "coulomb_friction", .joint = 0, .size = 5.52533};
+  const Injection delay{.effect = "sensor_delay", .joint = 5, .size = 0.0154267};
+  BenchCase c = diagnosed("puma560", {coulomb, delay}, 81, 47U * 1000U + 34U);
+  SCOPED_TRACE(diagnose::diagnosis_text(c.data, c.diagnosis));
+  EXPECT_NE(c.diagnosis.verdict.effect.find("coulomb_friction"), std::string::npos);
+  EXPECT_NE(c.diagnosis.verdict.effect.find(" or "), std::string::npos);
+  EXPECT_EQ(c.diagnosis.verdict.joints, std::vector<int>{1});
+}
+
 }  // namespace
 }  // namespace dyncc::test

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <deque>
+#include <limits>
 #include <map>
 #include <numbers>
 #include <numeric>
@@ -33,6 +34,12 @@ struct Candidate {
   double material = 0;     // largest per-joint explained RMS / torque RMS
   bool plausible = true;   // its fitted parameters make physical sense
   double away_shrink = 0;  // the shrink on the rows where the velocity is away from zero
+  // A friction's 95 % interval on those rows of its own joints, over the folds in which they move
+  // (see away_interval); empty (low above high) where fewer than three folds do.
+  double away_low = std::numeric_limits<double>::infinity();
+  double away_high = -std::numeric_limits<double>::infinity();
+  // Significant only where its joints move (its interval over all rows includes zero).
+  [[nodiscard]] bool significant_only_away() const { return low <= 0.0 && away_low > 0.0 && away_low <= away_high; }
 };
 
 // Weighted squared error over samples [begin, end): joints count relative to their torque.
@@ -76,8 +83,12 @@ double point_key(const Candidate& c) { return is_friction(*c.effect) ? c.away_sh
 
 // Equal explanations: what `c` explains beyond `top` or short of it is immaterial, or within the
 // fold spread of `top`.
+// A friction significant only where its joints move is compared there (its fold spread over all
+// rows says how much friction signal each fold holds, not how well it is known).
 bool as_good_as(const Candidate& c, const Candidate& top) {
-  return c.explained >= top.explained - kMaterial * kMaterial || c.shrink >= top.shrink - 0.5 * (top.high - top.low);
+  if (c.explained >= top.explained - kMaterial * kMaterial) return true;
+  if (top.significant_only_away()) return c.away_shrink >= top.away_shrink - 0.5 * (top.away_high - top.away_low);
+  return c.shrink >= top.shrink - 0.5 * (top.high - top.low);
 }
 
 // Half the 95 % interval of a mean over the folds.
@@ -87,6 +98,49 @@ double half_interval(const std::vector<double>& folds) {
   double var = 0;
   for (const double f : folds) var += (f - mean) * (f - mean);
   return kStudent95 * std::sqrt(var / (k - 1) / k);
+}
+
+// The 97.5 % quantile of Student's t with `dof` degrees of freedom (2 to 4: three to five folds).
+double student95(std::size_t dof) {
+  constexpr double kQuantile[] = {12.706, 4.303, 3.182, kStudent95};
+  return kQuantile[std::clamp<std::size_t>(dof, 1, 4) - 1];
+}
+
+// A friction candidate's 95 % interval on the rows of `joints` (0-based) where the velocity is
+// away from zero, over the folds in which those joints move (a share kMovingRows of their rows
+// away from zero); left empty where fewer than three folds do. A fold in which they rest holds no
+// evidence on their friction: the sign there is the velocity estimate's noise. A tele-operation
+// log that moves a joint in three of five folds and holds it in the others had a friction of 5 %
+// named in the moving folds (shrink 75-96 % there) but an interval reaching below zero over all
+// five.
+void set_away_interval(Candidate& c, const Eigen::VectorXd& baseline, const Eigen::VectorXd& weight,
+                       const Eigen::VectorXd& away, const std::vector<int>& joints, Eigen::Index n) {
+  constexpr double kMovingRows = 0.01;
+  std::vector<double> folds;
+  Eigen::Index begin = 0;
+  for (const Eigen::Index end : c.cv.fold_end) {
+    double before = 0, after = 0, moving = 0;
+    for (Eigen::Index s = begin; s < end; ++s) {
+      for (const int j : joints) {
+        const Eigen::Index r = s * n + j;
+        const double w = away[r] * weight[j] * weight[j];
+        before += w * baseline[r] * baseline[r];
+        after += w * c.cv.heldout[r] * c.cv.heldout[r];
+        moving += away[r];
+      }
+    }
+    const double rows = static_cast<double>((end - begin) * static_cast<Eigen::Index>(joints.size()));
+    if (before > 0 && moving >= kMovingRows * rows) folds.push_back(1.0 - after / before);
+    begin = end;
+  }
+  if (folds.size() < 3) return;
+  const auto k = static_cast<double>(folds.size());
+  const double mean = std::accumulate(folds.begin(), folds.end(), 0.0) / k;
+  double var = 0;
+  for (const double f : folds) var += (f - mean) * (f - mean);
+  const double half = student95(folds.size() - 1) * std::sqrt(var / (k - 1) / k);
+  c.away_low = mean - half;
+  c.away_high = mean + half;
 }
 
 // Whether `a` explains clearly more than `b` (evaluated on the same folds and baseline): fold by
@@ -289,7 +343,7 @@ int joint_of_parameter(const std::string& name, const std::string& prefix) {
   return std::atoi(name.c_str() + prefix.size()) - 1;
 }
 
-bool plausible(const RankedEffect& r, const pipeline::Derivation& derivation, const Gap& gap) {
+bool plausible_parameter(const FittedParameter& p, const pipeline::Derivation& derivation, const Gap& gap) {
   const Eigen::VectorXd& torque_rms = gap.torque_rms;
   const Eigen::VectorXd nominal = derivation.numeric->nominal_standard_values();
   const auto& params = derivation.model.params;
@@ -299,39 +353,44 @@ bool plausible(const RankedEffect& r, const pipeline::Derivation& derivation, co
     const int index = of[static_cast<std::size_t>(joint)];
     return index >= 0 ? nominal[index] : 0.0;
   };
+  const bool non_negative = p.name.rfind("fc", 0) == 0 || p.name.rfind("fv", 0) == 0 || p.name.rfind("fs", 0) == 0 ||
+                            p.name == "mass" || p.name.rfind("ia", 0) == 0 || p.name == "force" ||
+                            p.name.rfind("stiffness", 0) == 0 || p.name.rfind("width", 0) == 0 || p.name == "damping" ||
+                            p.name.rfind("friction_", 0) == 0;
+  const double total = p.value + described(p.name, "fc", params.coulomb_of) +
+                       described(p.name, "fv", params.viscous_of) + described(p.name, "ia", params.rotor_of);
+  if (non_negative && total < -2.0 * p.error) return false;
+  // A drive whose torque is off by more than a factor of two is a wrong description, not a gain.
+  if (p.name.rfind("gain", 0) == 0 && (p.value < 0.5 || p.value > 2.0)) return false;
+  // A transmission that gives way by more than twice kLargestDeflection RMS under its joint's
+  // torque, or a dead band wider than four times it (0.1 and 0.2 rad: twice what the bench
+  // draws), is a loose joint or a wrong description (the TX40's wrist read as springs of 2-10
+  // N m/rad, 0.3-0.6 rad under its torque, soaking up what the rotor inertias lack).
+  const int spring = joint_of_parameter(p.name, "stiffness"), band = joint_of_parameter(p.name, "width");
+  if (spring >= 0 && spring < torque_rms.size() &&
+      torque_rms[spring] > 2.0 * kLargestDeflection * (p.value + 2.0 * p.error)) {
+    return false;
+  }
+  if (band >= 0 && band < torque_rms.size() && p.value - 2.0 * p.error > 4.0 * kLargestDeflection) return false;
+  // ... and one that moves the positions by less than the sensor resolves (the larger of its
+  // quantum and noise) is a model mismatch that happens to look like a shift: a spring's RMS
+  // deflection under the joint's torque must be two of those steps (a smooth shift of a step or
+  // so is what quantisation and an estimator's lag make of any mismatch: effect-free
+  // closed-loop Kraft logs at 200 Hz, 1.5 mrad potentiometer steps, were read as springs of
+  // 270-333 N m/rad giving way 0.9-1.6 mrad, and beside a rotor inertia one took 11 % of it); a
+  // dead band jumps by its full width at each turn and half of it must be one step (a 0.64 mrad
+  // band on 0.2 mrad steps is read within 1 %).
+  if (spring >= 0 && spring < torque_rms.size() &&
+      torque_rms[spring] < 2.0 * gap.position_resolution[spring] * std::max(p.value, 1e-12)) {
+    return false;
+  }
+  if (band >= 0 && band < torque_rms.size() && 0.5 * p.value < gap.position_resolution[band]) return false;
+  return true;
+}
+
+bool plausible(const RankedEffect& r, const pipeline::Derivation& derivation, const Gap& gap) {
   for (const FittedParameter& p : r.parameters) {
-    const bool non_negative = p.name.rfind("fc", 0) == 0 || p.name.rfind("fv", 0) == 0 || p.name.rfind("fs", 0) == 0 ||
-                              p.name == "mass" || p.name.rfind("ia", 0) == 0 || p.name == "force" ||
-                              p.name.rfind("stiffness", 0) == 0 || p.name.rfind("width", 0) == 0 ||
-                              p.name == "damping" || p.name.rfind("friction_", 0) == 0;
-    const double total = p.value + described(p.name, "fc", params.coulomb_of) +
-                         described(p.name, "fv", params.viscous_of) + described(p.name, "ia", params.rotor_of);
-    if (non_negative && total < -2.0 * p.error) return false;
-    // A drive whose torque is off by more than a factor of two is a wrong description, not a gain.
-    if (p.name.rfind("gain", 0) == 0 && (p.value < 0.5 || p.value > 2.0)) return false;
-    // A transmission that gives way by more than twice kLargestDeflection RMS under its joint's
-    // torque, or a dead band wider than four times it (0.1 and 0.2 rad: twice what the bench
-    // draws), is a loose joint or a wrong description (the TX40's wrist read as springs of 2-10
-    // N m/rad, 0.3-0.6 rad under its torque, soaking up what the rotor inertias lack).
-    const int spring = joint_of_parameter(p.name, "stiffness"), band = joint_of_parameter(p.name, "width");
-    if (spring >= 0 && spring < torque_rms.size() &&
-        torque_rms[spring] > 2.0 * kLargestDeflection * (p.value + 2.0 * p.error)) {
-      return false;
-    }
-    if (band >= 0 && band < torque_rms.size() && p.value - 2.0 * p.error > 4.0 * kLargestDeflection) return false;
-    // ... and one that moves the positions by less than the sensor resolves (the larger of its
-    // quantum and noise) is a model mismatch that happens to look like a shift: a spring's RMS
-    // deflection under the joint's torque must be two of those steps (a smooth shift of a step or
-    // so is what quantisation and an estimator's lag make of any mismatch: effect-free
-    // closed-loop Kraft logs at 200 Hz, 1.5 mrad potentiometer steps, were read as springs of
-    // 270-333 N m/rad giving way 0.9-1.6 mrad, and beside a rotor inertia one took 11 % of it); a
-    // dead band jumps by its full width at each turn and half of it must be one step (a 0.64 mrad
-    // band on 0.2 mrad steps is read within 1 %).
-    if (spring >= 0 && spring < torque_rms.size() &&
-        torque_rms[spring] < 2.0 * gap.position_resolution[spring] * std::max(p.value, 1e-12)) {
-      return false;
-    }
-    if (band >= 0 && band < torque_rms.size() && 0.5 * p.value < gap.position_resolution[band]) return false;
+    if (!plausible_parameter(p, derivation, gap)) return false;
   }
   // A load or a contact is on the link, not metres away: a first moment with next to no mass (a
   // payload of 0.1 g at 46 m on a Kraft log whose forearm was read 0.05 rad off) is the columns
@@ -488,16 +547,38 @@ const Candidate* first_of_a_smaller_pair(const Candidate* chosen, const std::vec
   return chosen;
 }
 
+// The columns of `e` on `joints` (0-based) if it is a per-joint effect and `joints` is not empty;
+// else all of them.
+Eigen::Index columns_on(const Effect& e, const std::vector<int>& joints) {
+  if (joints.empty() || !per_joint(e)) return e.columns.cols();
+  return std::count_if(e.joint_of.begin(), e.joint_of.end(),
+                       [&](int j) { return std::find(joints.begin(), joints.end(), j) != joints.end(); });
+}
+
 // " or B or C": the usable candidates as good as the leading one whose columns are not a superset
 // of the chosen ones (the same explanation) nor more than twice as many.
 template <typename Usable>
 std::string alternatives(const Candidate& chosen, const Candidate& top, const std::vector<const Candidate*>& order,
-                         Usable usable) {
+                         Usable usable, Eigen::Index offset, const Eigen::VectorXd& torque_rms) {
   std::string out;
+  std::vector<int> joints;  // the chosen per-joint effect's joints (0-based)
+  if (per_joint(*chosen.effect)) joints = chosen.effect->joint_of;
+  std::sort(joints.begin(), joints.end());
+  joints.erase(std::unique(joints.begin(), joints.end()), joints.end());
   for (const Candidate* c : order) {
     if (c == &chosen || !usable(c) || !as_good_as(*c, top)) continue;
     if (spans(c->effect->columns, chosen.effect->columns)) continue;
-    if (c->effect->columns.cols() > 2 * chosen.effect->columns.cols()) continue;
+    if (!joints.empty() && per_joint(*c->effect)) {
+      // Another per-joint effect is an alternative where it acts on the same joints, counted
+      // there: the Coulomb friction of six joints against the torque gain of joint 1 it ties with
+      // is one column; Coulomb friction of joints 1-3 is not an alternative to a viscous friction of
+      // joint 3 (it explains something else on joints 1 and 2).
+      std::vector<int> theirs = own_joints(*c, offset, torque_rms);
+      for (int& j : theirs) --j;
+      if (theirs != joints || columns_on(*c->effect, joints) > 2 * chosen.effect->columns.cols()) continue;
+    } else if (c->effect->columns.cols() > 2 * chosen.effect->columns.cols()) {
+      continue;
+    }
     out += " or " + c->effect->name;
   }
   return out;
@@ -529,6 +610,24 @@ Effect narrowed(const Effect& e, const std::vector<int>& joints) {
   return kept_columns(e, [&](std::size_t k) {
     return std::find(joints.begin(), joints.end(), e.joint_of[k]) != joints.end();
   });
+}
+
+// The joints (0-based) of a per-joint candidate's own joints whose fitted parameters all make
+// physical sense.
+std::vector<int> plausible_joints(const Effect& e, const RankedEffect& r, const pipeline::Derivation& derivation,
+                                  const Gap& gap) {
+  std::vector<int> out;
+  for (const int joint : r.joints) {
+    bool fine = true;
+    for (std::size_t k = 0; k < e.parameters.size(); ++k) {
+      if (e.joint_of[k] != joint - 1) continue;
+      for (const FittedParameter& p : r.parameters) {
+        if (p.name == e.parameters[k] && !plausible_parameter(p, derivation, gap)) fine = false;
+      }
+    }
+    if (fine) out.push_back(joint - 1);
+  }
+  return out;
 }
 
 // A joint's column that is already in the fit under the same name (a Stribeck's fc2 once Coulomb's
@@ -637,6 +736,63 @@ CrossValidation fit_together(const std::vector<Effect>& effects, const Eigen::Ve
   return cross_validate(residual, all, n, weight, &fitted_on);
 }
 
+// What a selection step judges a candidate on: the residual, the fit accepted so far and its
+// held-out residual.
+struct StepState {
+  const Eigen::MatrixXd& accepted;
+  const Eigen::VectorXd &r0, &baseline, &weight, &away;
+  const Eigen::VectorXd& before;  // per joint, the held-out RMS so far
+  const Gap& gap;
+  const pipeline::Derivation& derivation;
+};
+
+// A candidate evaluated on top of the accepted fit, its plausibility judged, and for a friction
+// its interval where its joints move (narrowed effects are kept in `narrowed_effects`).
+Candidate judged(const Effect& e, const StepState& s, std::deque<Effect>& narrowed_effects) {
+  const Eigen::Index n = s.before.size();
+  const Eigen::Index offset = s.accepted.cols();
+  Candidate c = evaluate_point(e, s.accepted, s.r0, s.baseline, s.weight, s.away, n);
+  RankedEffect described = describe(c, s.before, offset, s.gap.torque_rms);
+  c.plausible = plausible(described, s.derivation, s.gap);
+  // A per-joint effect whose fit is implausible on some of its joints only is judged on the
+  // others: the implausible joints' columns soak up something else (a sensor delay of joint 1
+  // read as negative viscous friction of joints 1 and 2 beside a true one of joint 3 left the
+  // friction implausible, and the delay was named first). Not for a profile effect: its points
+  // are compared whole (a Stribeck scale narrowed so would be chosen for one joint while the
+  // others' columns were bent to it).
+  if (!c.plausible && per_joint(e) && e.profile_name.empty()) {
+    const std::vector<int> fine = plausible_joints(e, described, s.derivation, s.gap);
+    if (!fine.empty() && fine.size() < described.joints.size()) {
+      narrowed_effects.push_back(narrowed(e, fine));
+      Candidate mine = evaluate_point(narrowed_effects.back(), s.accepted, s.r0, s.baseline, s.weight, s.away, n);
+      RankedEffect mine_described = describe(mine, s.before, offset, s.gap.torque_rms);
+      mine.plausible = plausible(mine_described, s.derivation, s.gap);
+      if (mine.plausible) {
+        c = std::move(mine);
+        described = std::move(mine_described);
+      }
+    }
+  }
+  if (is_friction(*c.effect)) {
+    std::vector<int> own;
+    for (const int j : described.joints) own.push_back(j - 1);
+    set_away_interval(c, s.baseline, s.weight, s.away, own, n);
+  }
+  return c;
+}
+
+// Whether a candidate may be accepted: plausible, significant (for a friction, possibly only where
+// its joints move), material, and removing kAcceptShrink of the held-out error. A friction effect
+// must also explain residual where the velocity is away from zero: one that only fits the rows
+// near zero (a plant whose friction turns over more gently than the model's, read as a negative
+// Coulomb correction; a sharper one, as a Stribeck excess at the smallest scale) explains how the
+// friction turns over, which the model cannot know.
+bool acceptable(const Candidate* c) {
+  const bool significant = c->low > 0.0 || c->significant_only_away();
+  return c->plausible && c->shrink >= kAcceptShrink && significant && c->material >= kMaterial &&
+         (!judged_away_from_zero(*c->effect) || c->away_shrink >= kAcceptShrink);
+}
+
 Diagnosis diagnose(const Dataset& d, const pipeline::Derivation& derivation) {
   Diagnosis out;
   const Eigen::Index n = d.n;
@@ -658,6 +814,7 @@ Diagnosis diagnose(const Dataset& d, const pipeline::Derivation& derivation) {
     // Every remaining candidate on top of what is accepted; the best profile point per effect.
     std::map<std::string, Candidate> best;
     const Eigen::VectorXd before = joint_rms(baseline, n);
+    const StepState step_state{accepted, r0, baseline, weight, away, before, out.gap, derivation};
     for (const Effect& whole : effects) {
       if (std::find(taken.begin(), taken.end(), whole.family) != taken.end()) continue;
       const Effect* use = &whole;
@@ -667,8 +824,7 @@ Diagnosis diagnose(const Dataset& d, const pipeline::Derivation& derivation) {
         if (use->columns.cols() == 0) continue;
       }
       const Effect& e = *use;
-      Candidate c = evaluate_point(e, accepted, r0, baseline, weight, away, n);
-      c.plausible = plausible(describe(c, before, accepted.cols(), out.gap.torque_rms), derivation, out.gap);
+      Candidate c = judged(e, step_state, narrowed_effects);
       auto it = best.find(e.name);
       const bool better = it == best.end() || (c.plausible && !it->second.plausible) ||
                           (c.plausible == it->second.plausible && point_key(c) > point_key(it->second));
@@ -688,14 +844,6 @@ Diagnosis diagnose(const Dataset& d, const pipeline::Derivation& derivation) {
       }
       out.within_model = describe(best.at("inertial_parameters"), before, 0, out.gap.torque_rms);
     }
-    // A friction effect must also explain residual where the velocity is away from zero: one that
-    // only fits the rows near zero (a plant whose friction turns over more gently than the
-    // model's, read as a negative Coulomb correction; a sharper one, as a Stribeck excess at the
-    // smallest scale) explains how the friction turns over, which the model cannot know.
-    auto acceptable = [](const Candidate* c) {
-      return c->plausible && c->shrink >= kAcceptShrink && c->low > 0.0 && c->material >= kMaterial &&
-             (!judged_away_from_zero(*c->effect) || c->away_shrink >= kAcceptShrink);
-    };
     // The best acceptable candidate leads (one above it whose interval still includes 0 does not
     // block it). Parsimony among equal explanations: two candidates are equal when what one
     // explains beyond the other is immaterial (below kMaterial of the torque RMS); of acceptable
@@ -799,7 +947,7 @@ Diagnosis diagnose(const Dataset& d, const pipeline::Derivation& derivation) {
     }
     if (chosen == nullptr) break;
     r.accepted = true;
-    r.effect += alternatives(*chosen, *top, order, usable);
+    r.effect += alternatives(*chosen, *top, order, usable, accepted.cols(), out.gap.torque_rms);
     out.selected.push_back(r);
     out.accepted_effects.push_back(*chosen->effect);
     taken.push_back(chosen->effect->family);
