@@ -127,5 +127,20 @@ TEST(BlindBenchCase, PumaCoulombFrictionThatATorqueGainMimicsIsAnAlternative) {
   EXPECT_EQ(c.diagnosis.verdict.joints, std::vector<int>{1});
 }
 
+// Case 9 of the blind seed 53 (Kraft, 81 Hz): a Stribeck excess of joint 2 (20 % of the torque)
+// and a viscous friction of the same joint. The Stribeck scale was chosen before the viscous
+// friction was fitted and bent to mimic it: fs2 0.449 for 0.350, fv2 0.109 for 0.201. Each
+// profile effect's point is chosen again beside all accepted effects.
+TEST(BlindBenchCase, KraftStribeckScaleIsChosenAgainBesideTheViscousFrictionOfItsJoint) {
+  const Injection stribeck{.effect = "stribeck_friction", .joint = 1, .size = 0.350485};
+  const Injection viscous{.effect = "viscous_friction", .joint = 1, .size = 0.200918};
+  BenchCase c = diagnosed("kraft", {stribeck, viscous}, 81, 53U * 1000U + 9U);
+  SCOPED_TRACE(diagnose::diagnosis_text(c.data, c.diagnosis));
+  EXPECT_EQ(c.diagnosis.verdict.effect, "stribeck_friction");
+  EXPECT_EQ(c.diagnosis.verdict.joints, std::vector<int>{2});
+  EXPECT_NEAR(c.fitted["fs2"], 0.350485, 0.035);
+  EXPECT_NEAR(c.fitted["fv2"], 0.200918, 0.02);
+}
+
 }  // namespace
 }  // namespace dyncc::test

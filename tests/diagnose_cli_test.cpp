@@ -99,6 +99,15 @@ nlohmann::json diagnose_excited(
   return nlohmann::json::parse(in);
 }
 
+// Every selected effect's fitted parameters, by name.
+std::map<std::string, double> fitted_of(const nlohmann::json& diagnosis) {
+  std::map<std::string, double> fitted;
+  for (const auto& r : diagnosis["selected"]) {
+    for (const auto& p : r["parameters"]) fitted[p["name"]] = p["value"];
+  }
+  return fitted;
+}
+
 // Without a hidden effect the only gap is what the MuJoCo plant and the description differ by (a
 // few % of the base joint's torque). Its shape once fitted a 333 N m/rad spring on joint 1 that
 // gives way 0.9 mrad, under the 12-bit potentiometers' 1.5 mrad step: a shift the sensor cannot
@@ -120,10 +129,7 @@ TEST(DiagnoseCommand, ClosedLoopRotorInertiaBesideATorqueGainOfItsJoint) {
                   inertia, gain));
   EXPECT_EQ(d["verdict"]["effect"], "rotor_inertia") << d["verdict"].dump();
   EXPECT_EQ(d["verdict"]["joints"], nlohmann::json::array({3}));
-  std::map<std::string, double> fitted;
-  for (const auto& r : d["selected"]) {
-    for (const auto& p : r["parameters"]) fitted[p["name"]] = p["value"];
-  }
+  std::map<std::string, double> fitted = fitted_of(d);
   ASSERT_TRUE(fitted.count("ia3") && fitted.count("gain3")) << d["selected"].dump();
   EXPECT_NEAR(fitted["ia3"], inertia, 0.1 * inertia);
   EXPECT_NEAR(fitted["gain3"], gain, 0.1 * (gain - 1.0));
@@ -163,10 +169,7 @@ TEST(DiagnoseCommand, ViscousFrictionIsNotLostToTheDelayItsOtherJointsMimic) {
       "--plant mujoco --trajectory fourier --rate 200 --seed 47039");
   EXPECT_EQ(d["verdict"]["effect"], "viscous_friction") << d["verdict"].dump();
   EXPECT_EQ(d["verdict"]["joints"], nlohmann::json::array({3}));
-  std::map<std::string, double> fitted;
-  for (const auto& r : d["selected"]) {
-    for (const auto& p : r["parameters"]) fitted[p["name"]] = p["value"];
-  }
+  std::map<std::string, double> fitted = fitted_of(d);
   ASSERT_TRUE(fitted.count("fv3") && fitted.count("delay")) << d["selected"].dump();
   EXPECT_NEAR(fitted["fv3"], fv, 0.1 * fv);
   EXPECT_NEAR(fitted["delay"], delay, 1.0 / 200);
