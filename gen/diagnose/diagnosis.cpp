@@ -91,19 +91,23 @@ bool as_good_as(const Candidate& c, const Candidate& top) {
   return c.shrink >= top.shrink - 0.5 * (top.high - top.low);
 }
 
-// Half the 95 % interval of a mean over the folds.
-double half_interval(const std::vector<double>& folds) {
-  const auto k = static_cast<double>(folds.size());
-  const double mean = std::accumulate(folds.begin(), folds.end(), 0.0) / k;
-  double var = 0;
-  for (const double f : folds) var += (f - mean) * (f - mean);
-  return kStudent95 * std::sqrt(var / (k - 1) / k);
-}
-
 // The 97.5 % quantile of Student's t with `dof` degrees of freedom (2 to 4: three to five folds).
 double student95(std::size_t dof) {
   constexpr double kQuantile[] = {12.706, 4.303, 3.182, kStudent95};
   return kQuantile[std::clamp<std::size_t>(dof, 1, 4) - 1];
+}
+
+double mean_of(const std::vector<double>& folds) {
+  return std::accumulate(folds.begin(), folds.end(), 0.0) / static_cast<double>(folds.size());
+}
+
+// Half the 95 % interval of a mean over the folds (t with one degree of freedom fewer than folds).
+double half_interval(const std::vector<double>& folds) {
+  const auto k = static_cast<double>(folds.size());
+  const double mean = mean_of(folds);
+  double var = 0;
+  for (const double f : folds) var += (f - mean) * (f - mean);
+  return student95(folds.size() - 1) * std::sqrt(var / (k - 1) / k);
 }
 
 // A friction candidate's 95 % interval on the rows of `joints` (0-based) where the velocity is
@@ -134,11 +138,7 @@ void set_away_interval(Candidate& c, const Eigen::VectorXd& baseline, const Eige
     begin = end;
   }
   if (folds.size() < 3) return;
-  const auto k = static_cast<double>(folds.size());
-  const double mean = std::accumulate(folds.begin(), folds.end(), 0.0) / k;
-  double var = 0;
-  for (const double f : folds) var += (f - mean) * (f - mean);
-  const double half = student95(folds.size() - 1) * std::sqrt(var / (k - 1) / k);
+  const double mean = mean_of(folds), half = half_interval(folds);
   c.away_low = mean - half;
   c.away_high = mean + half;
 }
@@ -150,8 +150,7 @@ void set_away_interval(Candidate& c, const Eigen::VectorXd& baseline, const Eige
 bool clearly_more(const Candidate& a, const Candidate& b) {
   std::vector<double> gain(a.folds.size());
   for (std::size_t k = 0; k < gain.size(); ++k) gain[k] = a.folds[k] - b.folds[k];
-  const double mean = std::accumulate(gain.begin(), gain.end(), 0.0) / static_cast<double>(gain.size());
-  return mean > half_interval(gain) && a.shrink - b.shrink > kAcceptShrink * a.shrink + 0.01;
+  return mean_of(gain) > half_interval(gain) && a.shrink - b.shrink > kAcceptShrink * a.shrink + 0.01;
 }
 
 Candidate evaluate(const Effect& effect, const Eigen::MatrixXd& accepted, const Eigen::VectorXd& r0,
@@ -664,11 +663,6 @@ Candidate narrowed_at_best_point(const Effect& chosen, const std::vector<int>& k
   return evaluate(store.back(), accepted, r0, baseline, weight, n);
 }
 
-// Once every effect is in: all of them fitted together, each per-joint effect narrowed once more
-// to the joints its own columns still carry (an offset of joint 3 that only stood in for a gain
-// of joint 5 until the gain came in is dropped), and every effect's parameters read from that
-// joint fit rather than from the step that accepted it; one whose own columns carry nothing any
-// more is dropped.
 // Each accepted friction profile's point (a Stribeck scale) chosen again beside all the accepted
 // effects, by the joint fit's held-out error on the rows away from zero velocity (as the search
 // chose it): a scale picked before the viscous friction of its joint was fitted is bent to mimic
@@ -711,6 +705,11 @@ void rechoose_points(Diagnosis& out, const std::vector<Effect>& effects, const E
   }
 }
 
+// Once every effect is in: all of them fitted together, each per-joint effect narrowed once more
+// to the joints its own columns still carry (an offset of joint 3 that only stood in for a gain
+// of joint 5 until the gain came in is dropped), and every effect's parameters read from that
+// joint fit rather than from the step that accepted it; one whose own columns carry nothing any
+// more is dropped.
 void refit_together(Diagnosis& out, const Eigen::VectorXd& r0, const Eigen::VectorXd& weight, Eigen::Index n) {
   if (out.accepted_effects.empty()) return;
   auto fit = [&]() { return fit_together(out.accepted_effects, r0, weight, out.away, n); };
