@@ -84,7 +84,9 @@ Diagnosis diagnose(const Dataset& data, const pipeline::Derivation& derivation);
 /// Effects fitted together on the residual (blocked cross-validation with the per-joint weights):
 /// friction columns are fitted where the velocity is away from zero (`away`) and predict on every
 /// row. Near zero a log's friction turns over in its own way, which would bend a Coulomb term
-/// fitted there (a rigid plant's friction regularised over 10 mrad/s read 11 % low).
+/// fitted there (a rigid plant's friction regularised over 10 mrad/s read 11 % low). A joint's rows
+/// near zero whose held-out mean square after a first fit is over twice that away from zero hold
+/// a static friction, not noise: the fit is made again without them.
 CrossValidation fit_together(const std::vector<Effect>& effects, const Eigen::VectorXd& residual,
                              const Eigen::VectorXd& weight, const Eigen::VectorXd& away, Eigen::Index n);
 

@@ -211,6 +211,9 @@ std::vector<Effect> candidate_effects(const Dataset& d, const pipeline::Derivati
   }
   // Into the analysis rows, through the filter the logged torque went through.
   for (Effect& e : out) e.columns = d.condition(e.columns);
+  for (Effect& e : out) {
+    if (e.family == "sensor_delay") fit_delay_column(d, e);
+  }
   // Effects that shift the measured positions off the link's, by theta_j w_j(t) (conditioned as
   // they are made: the columns are re-linearised at a first fit).
   const ModelSensitivity sensitivity = model_sensitivity(d, derivation);

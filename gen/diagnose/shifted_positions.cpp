@@ -1,6 +1,7 @@
 #include "diagnose/shifted_positions.hpp"
 
 #include <cmath>
+#include <numbers>
 #include <vector>
 
 #include "diagnose/signals.hpp"
@@ -11,6 +12,9 @@ namespace {
 constexpr double kLinearShift = 0.01;   // rad: below it the tangent is as good as the secant
 constexpr double kVelocityStep = 1e-6;  // rad/s, for the torque's derivative by a velocity
 constexpr double kLargestShift = 1.0;   // rad: a fit beyond this is not a shift of the positions
+// rad: a delay's phase at the filter's cut-off below which its tangent is as good as the secant
+// (the cubic term left out is under 0.5^2 / 6 = 4 % of the shift even at the cut-off)
+constexpr double kLinearPhase = 0.5;
 
 // The nominal model's torque without its friction. The drive's friction acts at the motor's
 // velocity, which is what the log's positions give, so the log and the model have the same
@@ -46,6 +50,28 @@ Eigen::VectorXd secant(const Dataset& d, const ModelTorque& model, const Shift& 
     column.segment(s * n, n) = (model.at(q, qd, qdd) - tau.row(s).transpose()) / theta;
   }
   return column;
+}
+
+// Column j of `values` (one segment's rows at `rate`) at the time of row s plus `lead` seconds,
+// by cubic Hermite interpolation with the column's time derivative `slope`; held at the ends.
+double shifted_in_time(const Eigen::MatrixXd& values, const Eigen::MatrixXd& slope, Eigen::Index begin,
+                       Eigen::Index end, double rate, Eigen::Index s, Eigen::Index j, double lead) {
+  const double position = static_cast<double>(s - begin) + lead * rate;
+  const double last = static_cast<double>(end - begin - 1);
+  if (position <= 0) return values(begin, j);
+  if (position >= last) return values(end - 1, j);
+  const auto k = static_cast<Eigen::Index>(std::floor(position));
+  const double u = position - static_cast<double>(k), h = 1.0 / rate;
+  const double p0 = values(begin + k, j), p1 = values(begin + k + 1, j);
+  const double m0 = slope(begin + k, j) * h, m1 = slope(begin + k + 1, j) * h;
+  const double u2 = u * u, u3 = u2 * u;
+  return (2 * u3 - 3 * u2 + 1) * p0 + (u3 - 2 * u2 + u) * m0 + (-2 * u3 + 3 * u2) * p1 + (u3 - u2) * m1;
+}
+
+// The columns' weighted least-squares coefficients on the residual, with the fits' weights.
+Eigen::VectorXd weighted_fit(const Dataset& d, const Eigen::MatrixXd& columns) {
+  const Eigen::VectorXd weights = stacked_weights(torque_weights(analysis_torque_rms(d)), columns.rows());
+  return (weights.asDiagonal() * columns).colPivHouseholderQr().solve(weights.asDiagonal() * d.residual);
 }
 
 }  // namespace
@@ -106,10 +132,8 @@ void fit_shift_columns(const Dataset& d, const pipeline::Derivation& derivation,
     }
   }
   effect.columns = d.condition(tangent);
-  const Eigen::VectorXd weights = stacked_weights(torque_weights(analysis_torque_rms(d)), effect.columns.rows());
   for (int pass = 0; pass < 2; ++pass) {
-    const Eigen::VectorXd theta =
-        (weights.asDiagonal() * effect.columns).colPivHouseholderQr().solve(weights.asDiagonal() * d.residual);
+    const Eigen::VectorXd theta = weighted_fit(d, effect.columns);
     std::vector<Eigen::Index> shifted;
     for (Eigen::Index j = 0; j < n; ++j) {
       const double largest = std::abs(theta[j]) * reach[j];
@@ -124,6 +148,24 @@ void fit_shift_columns(const Dataset& d, const pipeline::Derivation& derivation,
     for (std::size_t k = 0; k < shifted.size(); ++k) {
       effect.columns.col(shifted[k]) = conditioned.col(static_cast<Eigen::Index>(k));
     }
+  }
+}
+
+void fit_delay_column(const Dataset& d, Effect& effect) {
+  const Eigen::Index n = d.n;
+  for (int pass = 0; pass < 2; ++pass) {
+    const double delay = weighted_fit(d, effect.columns)[0];
+    if (!std::isfinite(delay) || std::abs(delay) * 2 * std::numbers::pi * d.cutoff < kLinearPhase) return;
+    Eigen::MatrixXd secant(d.samples() * n, 1);
+    for (const Dataset::Segment& g : d.segments) {
+      for (Eigen::Index s = g.begin; s < g.end; ++s) {
+        for (Eigen::Index j = 0; j < n; ++j) {
+          const double later = shifted_in_time(d.model_tau, d.model_tau_rate, g.begin, g.end, g.rate, s, j, delay);
+          secant(s * n + j, 0) = (later - d.model_tau(s, j)) / delay;
+        }
+      }
+    }
+    effect.columns = d.condition(secant);
   }
 }
 
