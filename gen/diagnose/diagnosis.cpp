@@ -786,7 +786,7 @@ CrossValidation fit_together(const std::vector<Effect>& effects, const Eigen::Ve
   // kg for 0.0104; now 0.01046) and a joint's offset 11 % (seed 47 case 9). Where the effects
   // explain the rows near zero as well as the others (a load or a contact held at rest in a
   // model-plant log), they stay: dropped, a payload beside a contact read 8 % low (seed 23 case 54).
-  const CrossValidation first = cross_validate(residual, all, n, weight, &fitted_on);
+  CrossValidation first = cross_validate(residual, all, n, weight, &fitted_on);
   Eigen::VectorXd away_square = Eigen::VectorXd::Zero(n), near_square = Eigen::VectorXd::Zero(n);
   Eigen::VectorXd away_rows = Eigen::VectorXd::Zero(n), near_rows = Eigen::VectorXd::Zero(n);
   for (Eigen::Index r = 0; r < residual.size(); ++r) {
