@@ -763,6 +763,29 @@ void refit_together(Diagnosis& out, const Eigen::VectorXd& r0, const Eigen::Vect
   out.final_after = joint_rms(joint.cv.heldout, n);
 }
 
+// 1 on every row but those near zero velocity (`away` 0) of a joint whose held-out mean square
+// there is over kStaticFrictionRatio times that away from zero (see fit_together).
+Eigen::VectorXd rows_without_static_friction(const Eigen::VectorXd& heldout, const Eigen::VectorXd& away,
+                                             Eigen::Index n) {
+  Eigen::VectorXd away_square = Eigen::VectorXd::Zero(n), near_square = Eigen::VectorXd::Zero(n);
+  Eigen::VectorXd away_rows = Eigen::VectorXd::Zero(n), near_rows = Eigen::VectorXd::Zero(n);
+  for (Eigen::Index r = 0; r < heldout.size(); ++r) {
+    (away[r] > 0 ? away_square : near_square)[r % n] += heldout[r] * heldout[r];
+    (away[r] > 0 ? away_rows : near_rows)[r % n] += 1;
+  }
+  std::vector<bool> holds(static_cast<std::size_t>(n), false);
+  for (Eigen::Index j = 0; j < n; ++j) {
+    holds[static_cast<std::size_t>(j)] =
+        away_rows[j] > 0 && near_rows[j] > 0 &&
+        near_square[j] / near_rows[j] > kStaticFrictionRatio * away_square[j] / away_rows[j];
+  }
+  Eigen::VectorXd kept = Eigen::VectorXd::Ones(heldout.size());
+  for (Eigen::Index r = 0; r < heldout.size(); ++r) {
+    if (away[r] == 0 && holds[static_cast<std::size_t>(r % n)]) kept[r] = 0;
+  }
+  return kept;
+}
+
 }  // namespace
 
 CrossValidation fit_together(const std::vector<Effect>& effects, const Eigen::VectorXd& residual,
@@ -787,20 +810,7 @@ CrossValidation fit_together(const std::vector<Effect>& effects, const Eigen::Ve
   // explain the rows near zero as well as the others (a load or a contact held at rest in a
   // model-plant log), they stay: dropped, a payload beside a contact read 8 % low (seed 23 case 54).
   CrossValidation first = cross_validate(residual, all, n, weight, &fitted_on);
-  Eigen::VectorXd away_square = Eigen::VectorXd::Zero(n), near_square = Eigen::VectorXd::Zero(n);
-  Eigen::VectorXd away_rows = Eigen::VectorXd::Zero(n), near_rows = Eigen::VectorXd::Zero(n);
-  for (Eigen::Index r = 0; r < residual.size(); ++r) {
-    const double square = first.heldout[r] * first.heldout[r];
-    (away[r] > 0 ? away_square : near_square)[r % n] += square;
-    (away[r] > 0 ? away_rows : near_rows)[r % n] += 1;
-  }
-  Eigen::VectorXd kept = Eigen::VectorXd::Ones(residual.size());
-  for (Eigen::Index r = 0; r < residual.size(); ++r) {
-    const Eigen::Index j = r % n;
-    if (away[r] > 0 || away_rows[j] == 0) continue;
-    const double away_mean = away_square[j] / away_rows[j], near_mean = near_square[j] / near_rows[j];
-    if (near_mean > kStaticFrictionRatio * away_mean) kept[r] = 0;
-  }
+  const Eigen::VectorXd kept = rows_without_static_friction(first.heldout, away, n);
   if (kept.minCoeff() == 1) return first;
   fitted_on.array().colwise() *= kept.array();
   return cross_validate(residual, all, n, weight, &fitted_on);

@@ -188,6 +188,7 @@ std::vector<Effect> candidate_effects(const Dataset& d, const pipeline::Derivati
   // Measured torque = nominal / gain: residual = (1/gain - 1) tau_model.
   out.push_back(per_joint(d, "torque_gain", "gain", Reading::gain,
                           [&](Eigen::Index s, Eigen::Index j) { return d.model_tau(s, j); }));
+  const std::size_t delay_at = out.size();
   {  // Positions measured late by `delay`: the torque leads the model by delay * d tau_model/dt.
     Effect e;
     e.name = e.family = "sensor_delay";
@@ -211,9 +212,7 @@ std::vector<Effect> candidate_effects(const Dataset& d, const pipeline::Derivati
   }
   // Into the analysis rows, through the filter the logged torque went through.
   for (Effect& e : out) e.columns = d.condition(e.columns);
-  for (Effect& e : out) {
-    if (e.family == "sensor_delay") fit_delay_column(d, e);
-  }
+  fit_delay_column(d, out[delay_at]);  // a secant where the delay is large
   // Effects that shift the measured positions off the link's, by theta_j w_j(t) (conditioned as
   // they are made: the columns are re-linearised at a first fit).
   const ModelSensitivity sensitivity = model_sensitivity(d, derivation);
