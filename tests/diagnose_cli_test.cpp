@@ -1,11 +1,14 @@
 // `dyncc diagnose` and `dyncc sim2real-bench` from the command line: exit codes, the JSON the
 // issue specifies, bad input, and a bench whose truth stays in files of their own.
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <gtest/gtest.h>
 
 #include <fstream>
 #include <map>
 #include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
 
 #include "cli_support.hpp"
 
@@ -82,6 +85,16 @@ TEST(Sim2RealBench, WritesTruthApartAndDiagnosesEachLog) {
   EXPECT_TRUE(std::filesystem::exists(out / "summary.md"));
 }
 
+// One entry of an effects file: `effect` on `joint` (from 1), its parameter `name` = `value`.
+std::string joint_effect(const char* effect, int joint, const char* name, double value) {
+  return fmt::format(R"({{"effect": "{}", "joints": [{}], "parameters": {{"{}": [{}]}}}})", effect, joint, name, value);
+}
+
+// An effects file's text with these entries.
+std::string effects_file_of(const std::vector<std::string>& entries) {
+  return fmt::format(R"({{"effects": [{}]}})", fmt::join(entries, ", "));
+}
+
 // A closed-loop log of the Kraft arm (by default the MuJoCo plant, a Fourier reference at 200 Hz,
 // the blind bench's seed 37, case 39), simulated by `dyncc excite` and diagnosed from the file
 // alone.
@@ -122,11 +135,9 @@ TEST(DiagnoseCommand, ClosedLoopKraftLogWithoutEffectsIsNone) {
 // within the bench's 10 %.
 TEST(DiagnoseCommand, ClosedLoopRotorInertiaBesideATorqueGainOfItsJoint) {
   const double inertia = 0.11834, gain = 1.05502;
-  const nlohmann::json d = diagnose_excited(
-      "rotor_gain_excite",
-      fmt::format(R"({{"effects": [{{"effect": "rotor_inertia", "joints": [3], "parameters": {{"ia": [{}]}}}},
-                    {{"effect": "torque_gain", "joints": [3], "parameters": {{"gain": [{}]}}}}]}})",
-                  inertia, gain));
+  const nlohmann::json d =
+      diagnose_excited("rotor_gain_excite", effects_file_of({joint_effect("rotor_inertia", 3, "ia", inertia),
+                                                             joint_effect("torque_gain", 3, "gain", gain)}));
   EXPECT_EQ(d["verdict"]["effect"], "rotor_inertia") << d["verdict"].dump();
   EXPECT_EQ(d["verdict"]["joints"], nlohmann::json::array({3}));
   std::map<std::string, double> fitted = fitted_of(d);
@@ -144,11 +155,9 @@ TEST(DiagnoseCommand, ClosedLoopRotorInertiaBesideATorqueGainOfItsJoint) {
 // verdict was `unknown`. A friction is judged on the folds in which its joint moves.
 TEST(DiagnoseCommand, TeleoperationFrictionOfAJointThatRestsInTwoFoldsIsNamed) {
   const double fc = 0.0503055;
-  const nlohmann::json d = diagnose_excited(
-      "teleop_coulomb",
-      fmt::format(R"({{"effects": [{{"effect": "coulomb_friction", "joints": [1], "parameters": {{"fc": [{}]}}}}]}})",
-                  fc),
-      "--plant dyncc --trajectory teleop --rate 1000 --seed 43018");
+  const nlohmann::json d =
+      diagnose_excited("teleop_coulomb", effects_file_of({joint_effect("coulomb_friction", 1, "fc", fc)}),
+                       "--plant dyncc --trajectory teleop --rate 1000 --seed 43018");
   EXPECT_EQ(d["verdict"]["effect"], "coulomb_friction") << d["verdict"].dump();
   EXPECT_EQ(d["verdict"]["joints"], nlohmann::json::array({1}));
   ASSERT_FALSE(d["selected"].empty());
@@ -161,12 +170,12 @@ TEST(DiagnoseCommand, TeleoperationFrictionOfAJointThatRestsInTwoFoldsIsNamed) {
 // delay was named first; the viscous friction of joint 3 alone is plausible and leads.
 TEST(DiagnoseCommand, ViscousFrictionIsNotLostToTheDelayItsOtherJointsMimic) {
   const double fv = 0.524476, delay = 0.0415925;
-  const nlohmann::json d = diagnose_excited(
-      "viscous_delay",
-      fmt::format(R"({{"effects": [{{"effect": "viscous_friction", "joints": [3], "parameters": {{"fv": [{}]}}}},
-                    {{"effect": "sensor_delay", "parameters": {{"delay": {}}}}}]}})",
-                  fv, delay),
-      "--plant mujoco --trajectory fourier --rate 200 --seed 47039");
+  const nlohmann::json d =
+      diagnose_excited("viscous_delay",
+                       effects_file_of(
+                           {joint_effect("viscous_friction", 3, "fv", fv),
+                            fmt::format(R"({{"effect": "sensor_delay", "parameters": {{"delay": {}}}}})", delay)}),
+                       "--plant mujoco --trajectory fourier --rate 200 --seed 47039");
   EXPECT_EQ(d["verdict"]["effect"], "viscous_friction") << d["verdict"].dump();
   EXPECT_EQ(d["verdict"]["joints"], nlohmann::json::array({3}));
   std::map<std::string, double> fitted = fitted_of(d);
@@ -198,11 +207,9 @@ TEST(DiagnoseCommand, TeleoperationPayloadIsFittedAwayFromTheRowsWhereTheArmRest
 // the folds' spread, and took over (fs1 read 0.054, 23 % low).
 TEST(DiagnoseCommand, TeleoperationStribeckScaleStaysTheStepsWhenNarrowingGainsNothingClear) {
   const double excess = 0.07046631934537236;
-  const nlohmann::json d = diagnose_excited(
-      "teleop_stribeck",
-      fmt::format(R"({{"effects": [{{"effect": "stribeck_friction", "joints": [1], "parameters": {{"fs": [{}]}}}}]}})",
-                  excess),
-      "--plant dyncc --trajectory teleop --rate 1000 --seed 61018");
+  const nlohmann::json d =
+      diagnose_excited("teleop_stribeck", effects_file_of({joint_effect("stribeck_friction", 1, "fs", excess)}),
+                       "--plant dyncc --trajectory teleop --rate 1000 --seed 61018");
   EXPECT_EQ(d["verdict"]["effect"], "stribeck_friction") << d["verdict"].dump();
   EXPECT_EQ(d["verdict"]["joints"], nlohmann::json::array({1})) << d["verdict"].dump();
   ASSERT_FALSE(d["selected"].empty());
