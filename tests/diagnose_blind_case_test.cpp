@@ -130,6 +130,23 @@ TEST(BlindBenchCase, PumaCoulombFrictionThatATorqueGainMimicsIsAnAlternative) {
   EXPECT_EQ(c.diagnosis.verdict.joints, std::vector<int>{1});
 }
 
+// Case 19 of the blind seed 67 (PUMA 560, 200 Hz): a Coulomb friction of joint 5 (10 % of the
+// torque) beside a viscous friction of joint 4. Coulomb columns on joints 4 and 5 explained 88.6 %,
+// a torque gain of the same joints 88.1 %; narrowed to joint 5 (joint 4 is the viscous
+// friction's) the Coulomb friction was compared with the gain still counted on both joints, the
+// gain led, and the verdict was a gain of joint 5 (0.91). Counted on its own joint too, the gain
+// does not lead.
+TEST(BlindBenchCase, PumaCoulombFrictionIsNotLedByAGainCountedOnTheViscousJointBesideIt) {
+  const Injection coulomb{.effect = "coulomb_friction", .joint = 4, .size = 0.09667718651432111};
+  const Injection viscous{.effect = "viscous_friction", .joint = 3, .size = 0.15677597443865066};
+  BenchCase c = diagnosed("puma560", {coulomb, viscous}, 200, 67U * 1000U + 19U);
+  SCOPED_TRACE(diagnose::diagnosis_text(c.data, c.diagnosis));
+  EXPECT_EQ(c.diagnosis.verdict.effect.substr(0, c.diagnosis.verdict.effect.find(" or ")), "coulomb_friction");
+  EXPECT_EQ(c.diagnosis.verdict.joints, std::vector<int>{5});
+  EXPECT_NEAR(c.fitted["fc5"], coulomb.size, 0.1 * coulomb.size);
+  EXPECT_NEAR(c.fitted["fv4"], viscous.size, 0.1 * viscous.size);
+}
+
 // Case 9 of the blind seed 53 (Kraft, 81 Hz): a Stribeck excess of joint 2 (20 % of the torque)
 // and a viscous friction of the same joint. The Stribeck scale was chosen before the viscous
 // friction was fitted and bent to mimic it: fs2 0.449 for 0.350, fv2 0.109 for 0.201. Each

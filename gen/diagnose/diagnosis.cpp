@@ -798,6 +798,23 @@ Eigen::VectorXd rows_without_static_friction(const Eigen::VectorXd& heldout, con
   return kept;
 }
 
+// The first step's candidates, best first, as the ranking; and what re-identifying the model's
+// own parameters alone explains.
+void record_first_step(Diagnosis& out, const std::vector<const Candidate*>& order,
+                       const std::map<std::string, Candidate>& best, const Eigen::VectorXd& before) {
+  for (const Candidate* c : order) {
+    out.ranking.push_back(describe(*c, before, 0, out.gap.torque_rms));
+    out.ranking.back().plausible = c->plausible;
+    if (judged_away_from_zero(*c->effect)) out.ranking.back().shrink_away_from_zero = c->away_shrink;
+  }
+  out.within_model = describe(best.at("inertial_parameters"), before, 0, out.gap.torque_rms);
+}
+
+// `c` explains clearly more than `mine`: beyond half of mine's fold spread and 1 %.
+bool clearly_above(const Candidate& c, const Candidate& mine) {
+  return c.shrink > mine.shrink + 0.5 * (mine.high - mine.low) + 0.01;
+}
+
 }  // namespace
 
 CrossValidation fit_together(const std::vector<Effect>& effects, const Eigen::VectorXd& residual,
@@ -935,14 +952,7 @@ Diagnosis diagnose(const Dataset& d, const pipeline::Derivation& derivation) {
     for (const auto& [name, c] : best) order.push_back(&c);
     std::sort(order.begin(), order.end(), [](const Candidate* a, const Candidate* b) { return a->shrink > b->shrink; });
     for (auto& [name, c] : best) measure(c, before, out.gap.torque_rms, accepted.cols());
-    if (step == 0) {
-      for (const Candidate* c : order) {
-        out.ranking.push_back(describe(*c, before, accepted.cols(), out.gap.torque_rms));
-        out.ranking.back().plausible = c->plausible;
-        if (judged_away_from_zero(*c->effect)) out.ranking.back().shrink_away_from_zero = c->away_shrink;
-      }
-      out.within_model = describe(best.at("inertial_parameters"), before, 0, out.gap.torque_rms);
-    }
+    if (step == 0) record_first_step(out, order, best, before);
     // The best acceptable candidate leads (one above it whose interval still includes 0 does not
     // block it). Parsimony among equal explanations: two candidates are equal when what one
     // explains beyond the other is immaterial (below kMaterial of the torque RMS); of acceptable
@@ -1033,7 +1043,19 @@ Diagnosis diagnose(const Dataset& d, const pipeline::Derivation& derivation) {
             return usable(c) && c->effect->family != pick->effect->family &&
                    !spans(c->effect->columns, mine.effect->columns);
           });
-          if (!of_a_pair && next != order.end() && (*next)->shrink > mine.shrink + 0.5 * (mine.high - mine.low) + 0.01)
+          // ... counted on its own joints too, when it is per-joint: a torque gain of joints 4
+          // and 5 whose joint 4 a viscous friction explains better is no more than a gain of
+          // joint 5, and it does not lead a Coulomb friction of joint 5 that explains as much
+          // (seed 67 case 19).
+          auto leads_on_its_own_joints = [&](const Candidate& c) {
+            if (!per_joint(*c.effect)) return true;
+            const RankedEffect theirs = describe(c, before, accepted.cols(), out.gap.torque_rms);
+            const std::vector<int> their_joints = own_joints_of(c, theirs);
+            if (their_joints.empty()) return false;
+            narrowed_effects.push_back(narrowed(*c.effect, their_joints));
+            return clearly_above(evaluate(narrowed_effects.back(), accepted, r0, baseline, weight, n), mine);
+          };
+          if (!of_a_pair && next != order.end() && clearly_above(**next, mine) && leads_on_its_own_joints(**next))
             continue;
           pick = &mine;
         }
