@@ -1046,12 +1046,13 @@ Diagnosis diagnose(const Dataset& d, const pipeline::Derivation& derivation) {
           // ... counted on its own joints too, when it is per-joint: a torque gain of joints 4
           // and 5 whose joint 4 a viscous friction explains better is no more than a gain of
           // joint 5, and it does not lead a Coulomb friction of joint 5 that explains as much
-          // (seed 67 case 19).
+          // (seed 67 case 19). One that keeps none of its joints leads as before: a simpler
+          // effect of its joints (Coulomb for Stribeck) is what then leads (seed 71 case 14).
           auto leads_on_its_own_joints = [&](const Candidate& c) {
             if (!per_joint(*c.effect)) return true;
             const RankedEffect theirs = describe(c, before, accepted.cols(), out.gap.torque_rms);
             const std::vector<int> their_joints = own_joints_of(c, theirs);
-            if (their_joints.empty()) return false;
+            if (their_joints.empty()) return true;
             narrowed_effects.push_back(narrowed(*c.effect, their_joints));
             return clearly_above(evaluate(narrowed_effects.back(), accepted, r0, baseline, weight, n), mine);
           };
