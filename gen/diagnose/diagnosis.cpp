@@ -11,6 +11,7 @@
 #include <optional>
 
 #include "diagnose/crossval.hpp"
+#include "diagnose/regime_error.hpp"
 
 namespace dyncc::diagnose {
 namespace {
@@ -37,6 +38,9 @@ struct Candidate {
   double material = 0;     // largest per-joint explained RMS / torque RMS
   bool plausible = true;   // its fitted parameters make physical sense
   double away_shrink = 0;  // the shrink on the rows where the velocity is away from zero
+  // Per column of cv, the error beyond the folds' spread (regime_error); only for the final joint
+  // fit, whose parameters are reported: the steps judge significance on the folds alone.
+  Eigen::VectorXd systematic;
   // A friction's 95 % interval on those rows of its own joints, over the folds in which they move
   // (see away_interval); empty (low above high) where fewer than three folds do.
   double away_low = std::numeric_limits<double>::infinity();
@@ -314,9 +318,11 @@ RankedEffect describe(const Candidate& c, const Eigen::VectorXd& before, Eigen::
   for (Eigen::Index k = 0; k < e.columns.cols(); ++k) {
     const int joint = e.joint_of[static_cast<std::size_t>(k)];
     if (joint >= 0 && std::find(r.joints.begin(), r.joints.end(), joint + 1) == r.joints.end()) continue;
-    const double theta = c.cv.theta[offset + k], error = c.cv.theta_error[offset + k];
+    const double theta = c.cv.theta[offset + k];
+    const double error = c.systematic.size() > 0 ? std::hypot(c.cv.theta_error[offset + k], c.systematic[offset + k])
+                                                 : c.cv.theta_error[offset + k];
     const double value = physical(e.reading[static_cast<std::size_t>(k)], theta);
-    // First-order propagation of the fold spread through the reading.
+    // First-order propagation of the error through the reading.
     const double derivative =
         std::abs(physical(e.reading[static_cast<std::size_t>(k)], theta + 1e-6 * (1 + std::abs(theta))) - value) /
         (1e-6 * (1 + std::abs(theta)));
@@ -724,8 +730,10 @@ void rechoose_points(Diagnosis& out, const std::vector<Effect>& effects, const E
 // to the joints its own columns still carry (an offset of joint 3 that only stood in for a gain
 // of joint 5 until the gain came in is dropped), and every effect's parameters read from that
 // joint fit rather than from the step that accepted it; one whose own columns carry nothing any
-// more is dropped.
-void refit_together(Diagnosis& out, const Eigen::VectorXd& r0, const Eigen::VectorXd& weight, Eigen::Index n) {
+// more is dropped. The stated errors add to the folds' spread how far the fit moves between
+// regimes of the motion (regime_error).
+void refit_together(Diagnosis& out, const Eigen::VectorXd& r0, const Eigen::VectorXd& weight, Eigen::Index n,
+                    const std::vector<RegimeSplit>& splits) {
   if (out.accepted_effects.empty()) return;
   auto fit = [&]() { return fit_together(out.accepted_effects, r0, weight, out.away, n); };
   Candidate joint;
@@ -764,6 +772,7 @@ void refit_together(Diagnosis& out, const Eigen::VectorXd& r0, const Eigen::Vect
   }
   if (narrowed_any) joint.cv = fit();
   joint.after = joint_rms(joint.cv.heldout, n);
+  joint.systematic = regime_error(out.accepted_effects, r0, weight, out.away, n, splits);
   at = 0;
   for (std::size_t k = 0; k < out.accepted_effects.size(); ++k) {
     joint.effect = &out.accepted_effects[k];
@@ -818,7 +827,8 @@ bool clearly_above(const Candidate& c, const Candidate& mine) {
 }  // namespace
 
 CrossValidation fit_together(const std::vector<Effect>& effects, const Eigen::VectorXd& residual,
-                             const Eigen::VectorXd& weight, const Eigen::VectorXd& away, Eigen::Index n) {
+                             const Eigen::VectorXd& weight, const Eigen::VectorXd& away, Eigen::Index n,
+                             const Eigen::VectorXd* rows) {
   Eigen::Index columns = 0;
   for (const Effect& e : effects) columns += e.columns.cols();
   Eigen::MatrixXd all(residual.size(), columns), fitted_on(residual.size(), columns);
@@ -829,6 +839,7 @@ CrossValidation fit_together(const std::vector<Effect>& effects, const Eigen::Ve
     if (is_friction(e)) fitted_on.middleCols(at, e.columns.cols()).array().colwise() *= away.array();
     at += e.columns.cols();
   }
+  if (rows != nullptr) fitted_on.array().colwise() *= rows->array();
   // Then again without the rows near zero velocity of a joint whose held-out residual there is
   // over twice (in mean square) what it is away from zero after a first fit: there the joint's
   // torque balance holds a static friction anywhere within +-fc (the description's Coulomb
@@ -1085,7 +1096,7 @@ Diagnosis diagnose(const Dataset& d, const pipeline::Derivation& derivation) {
   }
   out.final_after = joint_rms(baseline, n);
   rechoose_points(out, effects, r0, weight, n);
-  refit_together(out, r0, weight, n);
+  refit_together(out, r0, weight, n, regime_splits(d, away));
 
   if (out.selected.empty()) {
     // Structure left: a joint whose gap is material and above the noise floor (and above what the

@@ -86,8 +86,10 @@ Diagnosis diagnose(const Dataset& data, const pipeline::Derivation& derivation);
 /// row. Near zero a log's friction turns over in its own way, which would bend a Coulomb term
 /// fitted there (a rigid plant's friction regularised over 10 mrad/s read 11 % low). A joint's rows
 /// near zero whose held-out mean square after a first fit is over twice that away from zero hold
-/// a static friction, not noise: the fit is made again without them.
+/// a static friction, not noise: the fit is made again without them. With `rows` (stacked, 0 or
+/// 1), only the rows marked 1 are fitted on.
 CrossValidation fit_together(const std::vector<Effect>& effects, const Eigen::VectorXd& residual,
-                             const Eigen::VectorXd& weight, const Eigen::VectorXd& away, Eigen::Index n);
+                             const Eigen::VectorXd& weight, const Eigen::VectorXd& away, Eigen::Index n,
+                             const Eigen::VectorXd* rows = nullptr);
 
 }  // namespace dyncc::diagnose

@@ -120,8 +120,9 @@ std::string diagnosis_text(const Dataset& data, const Diagnosis& d) {
                        100 * r.shrink_low, 100 * r.shrink_high, joints_text(r.joints),
                        r.plausible ? "" : "  (implausible fit)", away);
   }
-  out += "\nselected:\n";
-  if (d.selected.empty()) out += "  nothing\n";
+  out += d.selected.empty() ? "\nselected:\n  nothing\n"
+                            : "\nselected (+- one standard error: the folds' spread and how far slow and fast "
+                              "motion disagree):\n";
   for (const RankedEffect& r : d.selected) {
     out += fmt::format("  {} on joints {}: shrink {:.1f} %\n", r.effect, joints_text(r.joints), 100 * r.shrink);
     for (const FittedParameter& p : r.parameters)

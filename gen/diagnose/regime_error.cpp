@@ -1,0 +1,66 @@
+#include "diagnose/regime_error.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "diagnose/diagnosis.hpp"
+
+namespace dyncc::diagnose {
+namespace {
+
+// The moving samples below / above the median of sum_j (x_sj / rms_j)^2, as stacked row masks;
+// the samples at rest (no joint away from zero velocity) in both halves. A tele-operated arm rests
+// most of the time: split with the others, the rest would make up the slow half alone, whose fit
+// (gravity at a few postures) cannot tell a load's mass from its moment and moves by 20 %.
+RegimeSplit split_by(const char* name, const Eigen::MatrixXd& x, const Eigen::VectorXd& away) {
+  const Eigen::Index samples = x.rows(), n = x.cols();
+  std::vector<bool> moving(static_cast<std::size_t>(samples), false);
+  for (Eigen::Index s = 0; s < samples; ++s)
+    moving[static_cast<std::size_t>(s)] = away.segment(s * n, n).maxCoeff() > 0;
+  const Eigen::VectorXd rms = x.array().square().colwise().mean().sqrt().transpose();
+  Eigen::VectorXd measure = Eigen::VectorXd::Zero(samples);
+  for (Eigen::Index j = 0; j < n; ++j) {
+    if (rms[j] > 0) measure += (x.col(j) / rms[j]).array().square().matrix();
+  }
+  std::vector<double> sorted;
+  for (Eigen::Index s = 0; s < samples; ++s) {
+    if (moving[static_cast<std::size_t>(s)]) sorted.push_back(measure[s]);
+  }
+  const auto middle = sorted.begin() + static_cast<std::ptrdiff_t>(sorted.size() / 2);
+  std::nth_element(sorted.begin(), middle, sorted.end());
+  const double median = sorted.empty() ? 0.0 : *middle;
+  RegimeSplit out{name, Eigen::VectorXd::Zero(samples * n), Eigen::VectorXd::Zero(samples * n)};
+  for (Eigen::Index s = 0; s < samples; ++s) {
+    const bool at_rest = !moving[static_cast<std::size_t>(s)];
+    if (at_rest || measure[s] < median) out.lower.segment(s * n, n).setOnes();
+    if (at_rest || measure[s] >= median) out.upper.segment(s * n, n).setOnes();
+  }
+  return out;
+}
+
+}  // namespace
+
+std::vector<RegimeSplit> regime_splits(const Dataset& d, const Eigen::VectorXd& away) {
+  return {split_by("speed", d.analysis_qd, away), split_by("acceleration", d.analysis_qdd, away)};
+}
+
+Eigen::VectorXd regime_error(const std::vector<Effect>& effects, const Eigen::VectorXd& residual,
+                             const Eigen::VectorXd& weight, const Eigen::VectorXd& away, Eigen::Index n,
+                             const std::vector<RegimeSplit>& splits) {
+  Eigen::Index columns = 0;
+  for (const Effect& e : effects) columns += e.columns.cols();
+  Eigen::VectorXd error = Eigen::VectorXd::Zero(columns);
+  for (const RegimeSplit& split : splits) {
+    const CrossValidation lower = fit_together(effects, residual, weight, away, n, &split.lower);
+    const CrossValidation upper = fit_together(effects, residual, weight, away, n, &split.upper);
+    for (Eigen::Index k = 0; k < columns; ++k) {
+      const double half = 0.5 * (upper.theta[k] - lower.theta[k]);
+      const double noise = 0.5 * std::hypot(upper.theta_error[k], lower.theta_error[k]);
+      const double beyond = half * half - noise * noise;
+      if (std::isfinite(beyond) && beyond > 0) error[k] = std::max(error[k], std::sqrt(beyond));
+    }
+  }
+  return error;
+}
+
+}  // namespace dyncc::diagnose
