@@ -147,6 +147,23 @@ TEST(BlindBenchCase, PumaCoulombFrictionIsNotLedByAGainCountedOnTheViscousJointB
   EXPECT_NEAR(c.fitted["fv4"], viscous.size, 0.1 * viscous.size);
 }
 
+// Case 49 of the blind seed 73 (PUMA 560, 500 Hz): a torque gain of joint 6 (20 % of the torque)
+// beside a viscous friction of joint 5. The gain's columns on joints 5 and 6 explained 96.3 %;
+// narrowed to joint 6 (joint 5 is the friction's), it gave way to a Coulomb friction of joints 5
+// and 6 that explained more but kept none of its joints (the gain and the viscous friction each
+// explain one better), which then dropped out, and the viscous friction was named first. Such a
+// candidate leads only when a simpler effect took its joints (Coulomb for Stribeck).
+TEST(BlindBenchCase, PumaGainIsNotLedByACoulombFrictionWhoseJointsTheGainItselfExplains) {
+  const Injection gain{.effect = "torque_gain", .joint = 5, .size = 1.22};
+  const Injection viscous{.effect = "viscous_friction", .joint = 4, .size = 0.27810010199447427};
+  BenchCase c = diagnosed("puma560", {gain, viscous}, 500, 73U * 1000U + 49U);
+  SCOPED_TRACE(diagnose::diagnosis_text(c.data, c.diagnosis));
+  EXPECT_EQ(c.diagnosis.verdict.effect.substr(0, c.diagnosis.verdict.effect.find(" or ")), "torque_gain");
+  EXPECT_EQ(c.diagnosis.verdict.joints, std::vector<int>{6});
+  EXPECT_NEAR(c.fitted["gain6"], gain.size, 0.1 * (gain.size - 1.0));
+  EXPECT_NEAR(c.fitted["fv5"], viscous.size, 0.1 * viscous.size);
+}
+
 // Case 9 of the blind seed 53 (Kraft, 81 Hz): a Stribeck excess of joint 2 (20 % of the torque)
 // and a viscous friction of the same joint. The Stribeck scale was chosen before the viscous
 // friction was fitted and bent to mimic it: fs2 0.449 for 0.350, fv2 0.109 for 0.201. Each
