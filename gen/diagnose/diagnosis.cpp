@@ -41,6 +41,9 @@ struct Candidate {
   // Per column of cv, the error beyond the folds' spread (regime_error); only for the final joint
   // fit, whose parameters are reported: the steps judge significance on the folds alone.
   Eigen::VectorXd systematic;
+  // Per column of cv, what its coefficient is multiplied by to be read in applied torque
+  // (applied_torque_scale); empty: 1. Final joint fit only, like `systematic`.
+  Eigen::VectorXd applied_scale;
   // A friction's 95 % interval on those rows of its own joints, over the folds in which they move
   // (see away_interval); empty (low above high) where fewer than three folds do.
   double away_low = std::numeric_limits<double>::infinity();
@@ -318,9 +321,11 @@ RankedEffect describe(const Candidate& c, const Eigen::VectorXd& before, Eigen::
   for (Eigen::Index k = 0; k < e.columns.cols(); ++k) {
     const int joint = e.joint_of[static_cast<std::size_t>(k)];
     if (joint >= 0 && std::find(r.joints.begin(), r.joints.end(), joint + 1) == r.joints.end()) continue;
-    const double theta = c.cv.theta[offset + k];
-    const double error = c.systematic.size() > 0 ? std::hypot(c.cv.theta_error[offset + k], c.systematic[offset + k])
-                                                 : c.cv.theta_error[offset + k];
+    const double scale = c.applied_scale.size() > 0 ? c.applied_scale[offset + k] : 1.0;
+    const double theta = scale * c.cv.theta[offset + k];
+    const double error =
+        scale * (c.systematic.size() > 0 ? std::hypot(c.cv.theta_error[offset + k], c.systematic[offset + k])
+                                         : c.cv.theta_error[offset + k]);
     const double value = physical(e.reading[static_cast<std::size_t>(k)], theta);
     // First-order propagation of the error through the reading.
     const double derivative =
@@ -726,12 +731,38 @@ void rechoose_points(Diagnosis& out, const std::vector<Effect>& effects, const E
   }
 }
 
+// A torque gain g of joint j: the arm applies g times the logged torque, so every other column of
+// joint j is fitted in logged torque and its coefficient is the applied one over g (a viscous
+// friction of 0.190 beside a gain of 1.11 on the same joint read 0.170; seed 79 case 39). Per
+// column of the joint fit: g for a per-joint column of a joint with a fitted gain, else 1.
+Eigen::VectorXd applied_torque_scale(const CrossValidation& cv, const std::vector<Effect>& effects) {
+  std::map<int, double> gain_of;
+  Eigen::Index at = 0;
+  for (const Effect& e : effects) {
+    for (Eigen::Index k = 0; k < e.columns.cols() && e.family == "torque_gain"; ++k) {
+      const double g = physical(Reading::gain, cv.theta[at + k]);
+      if (std::isfinite(g) && g > 0) gain_of[e.joint_of[static_cast<std::size_t>(k)]] = g;
+    }
+    at += e.columns.cols();
+  }
+  Eigen::VectorXd scale = Eigen::VectorXd::Ones(at);
+  at = 0;
+  for (const Effect& e : effects) {
+    for (Eigen::Index k = 0; k < e.columns.cols() && e.family != "torque_gain"; ++k) {
+      const auto gain = gain_of.find(e.joint_of[static_cast<std::size_t>(k)]);
+      if (gain != gain_of.end()) scale[at + k] = gain->second;
+    }
+    at += e.columns.cols();
+  }
+  return scale;
+}
+
 // Once every effect is in: all of them fitted together, each per-joint effect narrowed once more
 // to the joints its own columns still carry (an offset of joint 3 that only stood in for a gain
 // of joint 5 until the gain came in is dropped), and every effect's parameters read from that
 // joint fit rather than from the step that accepted it; one whose own columns carry nothing any
 // more is dropped. The stated errors add to the folds' spread how far the fit moves between
-// regimes of the motion (regime_error).
+// regimes of the motion (regime_error); the parameters are read in applied torque.
 void refit_together(Diagnosis& out, const Eigen::VectorXd& r0, const Eigen::VectorXd& weight, Eigen::Index n,
                     const std::vector<RegimeSplit>& splits) {
   if (out.accepted_effects.empty()) return;
@@ -773,6 +804,7 @@ void refit_together(Diagnosis& out, const Eigen::VectorXd& r0, const Eigen::Vect
   if (narrowed_any) joint.cv = fit();
   joint.after = joint_rms(joint.cv.heldout, n);
   joint.systematic = regime_error(out.accepted_effects, r0, weight, out.away, n, splits);
+  joint.applied_scale = applied_torque_scale(joint.cv, out.accepted_effects);
   at = 0;
   for (std::size_t k = 0; k < out.accepted_effects.size(); ++k) {
     joint.effect = &out.accepted_effects[k];
