@@ -52,6 +52,13 @@ BenchCase diagnosed(const char* arm, const std::vector<Injection>& effects, doub
   return out;
 }
 
+// The verdict names `effect` first (a tie "A or B" counts by its first name) on `joints` alone.
+void expect_verdict(const BenchCase& c, const std::string& effect, const std::vector<int>& joints) {
+  const std::string& verdict = c.diagnosis.verdict.effect;
+  EXPECT_EQ(verdict.substr(0, verdict.find(" or ")), effect);
+  EXPECT_EQ(c.diagnosis.verdict.joints, joints);
+}
+
 // An effect-free log whose friction turns over differently from the model's: the PUMA 560 log of
 // the blind bench's seed 23, case 25 (1 kHz; the log's Coulomb friction is an exact sign, the
 // model's is smoothed over the estimated velocity). Its only residual is at reversals, where a
@@ -141,8 +148,7 @@ TEST(BlindBenchCase, PumaCoulombFrictionIsNotLedByAGainCountedOnTheViscousJointB
   const Injection viscous{.effect = "viscous_friction", .joint = 3, .size = 0.15677597443865066};
   BenchCase c = diagnosed("puma560", {coulomb, viscous}, 200, 67U * 1000U + 19U);
   SCOPED_TRACE(diagnose::diagnosis_text(c.data, c.diagnosis));
-  EXPECT_EQ(c.diagnosis.verdict.effect.substr(0, c.diagnosis.verdict.effect.find(" or ")), "coulomb_friction");
-  EXPECT_EQ(c.diagnosis.verdict.joints, std::vector<int>{5});
+  expect_verdict(c, "coulomb_friction", {5});
   EXPECT_NEAR(c.fitted["fc5"], coulomb.size, 0.1 * coulomb.size);
   EXPECT_NEAR(c.fitted["fv4"], viscous.size, 0.1 * viscous.size);
 }
@@ -158,8 +164,7 @@ TEST(BlindBenchCase, PumaGainIsNotLedByACoulombFrictionWhoseJointsTheGainItselfE
   const Injection viscous{.effect = "viscous_friction", .joint = 4, .size = 0.27810010199447427};
   BenchCase c = diagnosed("puma560", {gain, viscous}, 500, 73U * 1000U + 49U);
   SCOPED_TRACE(diagnose::diagnosis_text(c.data, c.diagnosis));
-  EXPECT_EQ(c.diagnosis.verdict.effect.substr(0, c.diagnosis.verdict.effect.find(" or ")), "torque_gain");
-  EXPECT_EQ(c.diagnosis.verdict.joints, std::vector<int>{6});
+  expect_verdict(c, "torque_gain", {6});
   EXPECT_NEAR(c.fitted["gain6"], gain.size, 0.1 * (gain.size - 1.0));
   EXPECT_NEAR(c.fitted["fv5"], viscous.size, 0.1 * viscous.size);
 }
