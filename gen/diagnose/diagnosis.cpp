@@ -1007,7 +1007,6 @@ Diagnosis diagnose(const Dataset& d, const pipeline::Derivation& derivation) {
     // ... and a joint that a simpler per-joint effect (fewer columns there: Coulomb against
     // Stribeck) explains as well is left for that one: a Coulomb friction of joint 2 is not a
     // Stribeck friction of joints 2 and 5 because joint 5 has one.
-    // (`lost_to_simpler`: set when some joint went to a simpler effect that explains it as well.)
     auto own_joints_of = [&](const Candidate& chosen, const RankedEffect& r, bool* lost_to_simpler = nullptr) {
       std::vector<int> kept;
       for (const int joint : r.joints) {
@@ -1033,7 +1032,7 @@ Diagnosis diagnose(const Dataset& d, const pipeline::Derivation& derivation) {
               theirs.columns.cols() < mine_effect.columns.cols() && !clearly_more(mine, other);
           beaten = (better || simpler_and_as_good) && other.low > 0.0 &&
                    plausible(describe(other, before, accepted.cols(), out.gap.torque_rms), derivation, out.gap);
-          if (beaten && simpler_and_as_good && lost_to_simpler != nullptr) *lost_to_simpler = true;
+          if (beaten && simpler_and_as_good && lost_to_simpler != nullptr) *lost_to_simpler = true;  // as good, simpler
         }
         if (!beaten) kept.push_back(joint - 1);
       }
@@ -1088,15 +1087,8 @@ Diagnosis diagnose(const Dataset& d, const pipeline::Derivation& derivation) {
             return usable(c) && c->effect->family != pick->effect->family &&
                    !spans(c->effect->columns, mine.effect->columns);
           });
-          // ... counted on its own joints too, when it is per-joint: a torque gain of joints 4
-          // and 5 whose joint 4 a viscous friction explains better is no more than a gain of
-          // joint 5, and it does not lead a Coulomb friction of joint 5 that explains as much
-          // (seed 67 case 19). One that keeps none of its joints because a simpler effect explains
-          // them as well leads as before: that simpler effect (Coulomb for Stribeck) is what then
-          // leads (seed 71 case 14). One whose joints went to other effects, mine among them, does
-          // not: a Coulomb friction of PUMA joints 5 and 6, whose joint 6 this torque gain and whose
-          // joint 5 a viscous friction explain better, had let the gain give way and then dropped
-          // out itself, and the viscous friction led (seed 73 case 49).
+          // ... counted on its own joints too (seed 67 case 19). One that keeps none leads only if a
+          // simpler effect took them (Coulomb for Stribeck, seed 71 case 14), not `mine` (seed 73 case 49).
           auto leads_on_its_own_joints = [&](const Candidate& c) {
             if (!per_joint(*c.effect)) return true;
             const RankedEffect theirs = describe(c, before, accepted.cols(), out.gap.torque_rms);
