@@ -12,7 +12,7 @@ namespace {
 // the samples at rest (no joint away from zero velocity) in both halves. A tele-operated arm rests
 // most of the time: split with the others, the rest would make up the slow half alone, whose fit
 // (gravity at a few postures) cannot tell a load's mass from its moment and moves by 20 %.
-RegimeSplit split_by(const char* name, const Eigen::MatrixXd& x, const Eigen::VectorXd& away) {
+RegimeSplit split_by(const Eigen::MatrixXd& x, const Eigen::VectorXd& away) {
   const Eigen::Index samples = x.rows(), n = x.cols();
   std::vector<bool> moving(static_cast<std::size_t>(samples), false);
   for (Eigen::Index s = 0; s < samples; ++s)
@@ -29,7 +29,7 @@ RegimeSplit split_by(const char* name, const Eigen::MatrixXd& x, const Eigen::Ve
   const auto middle = sorted.begin() + static_cast<std::ptrdiff_t>(sorted.size() / 2);
   std::nth_element(sorted.begin(), middle, sorted.end());
   const double median = sorted.empty() ? 0.0 : *middle;
-  RegimeSplit out{name, Eigen::VectorXd::Zero(samples * n), Eigen::VectorXd::Zero(samples * n)};
+  RegimeSplit out{Eigen::VectorXd::Zero(samples * n), Eigen::VectorXd::Zero(samples * n)};
   for (Eigen::Index s = 0; s < samples; ++s) {
     const bool at_rest = !moving[static_cast<std::size_t>(s)];
     if (at_rest || measure[s] < median) out.lower.segment(s * n, n).setOnes();
@@ -41,7 +41,7 @@ RegimeSplit split_by(const char* name, const Eigen::MatrixXd& x, const Eigen::Ve
 }  // namespace
 
 std::vector<RegimeSplit> regime_splits(const Dataset& d, const Eigen::VectorXd& away) {
-  return {split_by("speed", d.analysis_qd, away), split_by("acceleration", d.analysis_qdd, away)};
+  return {split_by(d.analysis_qd, away), split_by(d.analysis_qdd, away)};  // speed, acceleration
 }
 
 Eigen::VectorXd regime_error(const std::vector<Effect>& effects, const Eigen::VectorXd& residual,

@@ -18,7 +18,6 @@ namespace dyncc::diagnose {
 /// Two halves of the analysis rows (stacked masks, 1 on the rows of the half): the samples below
 /// and above the median of a measure of the motion.
 struct RegimeSplit {
-  const char* name = "";
   Eigen::VectorXd lower, upper;
 };
 
