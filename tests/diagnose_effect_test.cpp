@@ -172,6 +172,40 @@ TEST(InjectedEffects, PayloadCarriedForAWhileIsFoundWithItsWindow) {
   EXPECT_NEAR(value["put_down_at"], 29.6, 0.25);
 }
 
+// The positions' noise floor (Dataset::position_noise_torque) states how far the rigid model
+// torque moves, through the filter, when the positions move by their noise. Checked against
+// what noise does to the residual: a synthetic Kraft log (the model itself, positions quantised
+// to 0.2 mrad) once as it is and once with 1 mrad of white noise on its positions (a 12-bit
+// potentiometer's step is 1.5 mrad); the residual grows, in quadrature, by the floor the noisy
+// log states.
+TEST(NoiseFloor, PositionsNoiseFloorIsWhatTheirNoiseAddsToTheResidual) {
+  diagnose::SyntheticOptions options;
+  options.rate = 200;
+  const auto path = temp_path("noise_floor.csv");
+  diagnose::write_synthetic_log(kraft(), {}, options, path);
+  diagnose::JointLog log = diagnose::read_joint_log(path.string(), 3);
+  const diagnose::Dataset clean = diagnose::build_dataset({log}, kraft());
+  std::mt19937 random(11);
+  std::normal_distribution<double> noise(0.0, 1e-3);
+  for (Eigen::Index s = 0; s < log.samples(); ++s) {
+    for (Eigen::Index j = 0; j < 3; ++j) log.q(s, j) += noise(random);
+  }
+  const diagnose::Dataset noisy = diagnose::build_dataset({log}, kraft());
+  auto rms = [](const Eigen::VectorXd& stacked, Eigen::Index j) {
+    double sum = 0;
+    for (Eigen::Index r = j; r < stacked.size(); r += 3) sum += stacked[r] * stacked[r];
+    return std::sqrt(sum / static_cast<double>(stacked.size() / 3));
+  };
+  for (Eigen::Index j = 0; j < 3; ++j) {
+    SCOPED_TRACE(j + 1);
+    const double growth =
+        std::sqrt(std::max(0.0, std::pow(rms(noisy.residual, j), 2) - std::pow(rms(clean.residual, j), 2)));
+    const double floor = noisy.position_noise_torque[j];
+    EXPECT_NEAR(growth, floor, 0.25 * floor);
+    EXPECT_GT(floor, 5 * clean.position_noise_torque[j]);  // the quantum's own 0.06 mrad of noise
+  }
+}
+
 // d f / d q_j by a central difference.
 template <typename F>
 auto central_difference(F f, const Eigen::VectorXd& q, Eigen::Index j) {

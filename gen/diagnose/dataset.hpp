@@ -73,6 +73,9 @@ struct Dataset {
   std::vector<int> analysis_log;
   Eigen::MatrixXd analysis_qd, analysis_qdd, analysis_tau;  // A x n
   Eigen::VectorXd residual;                                 // A*n: filtered logged torque - filtered model torque
+  // Per joint: the RMS over the analysis rows of how far the filtered rigid-body model torque moves
+  // when the positions move by their noise (see position_noise_torque in dataset.cpp).
+  Eigen::VectorXd position_noise_torque;
   [[nodiscard]] Eigen::Index rows() const { return analysis_t.size(); }
 };
 

@@ -54,6 +54,7 @@ struct Regime {
 struct Gap {
   Eigen::VectorXd torque_rms, residual_rms, percent, noise_floor;  // per joint
   Eigen::VectorXd sign_floor;           // per joint: the model friction's uncertainty at reversals (see diagnosis.cpp)
+  Eigen::VectorXd position_floor;       // per joint: the rigid model's answer to the positions' noise (dataset.hpp)
   Eigen::VectorXd position_resolution;  // per joint: the larger of the positions' quantum and noise
   std::vector<Window> windows;          // flagged time windows (residual well above its usual level)
   std::vector<Regime> regimes;

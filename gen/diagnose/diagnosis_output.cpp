@@ -78,6 +78,7 @@ nlohmann::json diagnosis_json(const Dataset& data, const Diagnosis& d) {
             {"percent_of_torque_rms", vector_json(d.gap.percent)},
             {"noise_floor", vector_json(d.gap.noise_floor)},
             {"sign_floor", vector_json(d.gap.sign_floor)},
+            {"position_noise_floor", vector_json(d.gap.position_floor)},
             {"heldout_rms_after_selected", vector_json(d.final_after)},
             {"windows", windows},
             {"regimes", regimes}}},
@@ -101,9 +102,10 @@ std::string diagnosis_text(const Dataset& data, const Diagnosis& d) {
   out += fmt::format("\nheld-out gap of the nominal model (zero-phase filter {:.2f} Hz):\n", data.cutoff);
   for (Eigen::Index j = 0; j < data.n; ++j) {
     out += fmt::format(
-        "  joint {}: {:.4g} N m RMS = {:.1f} % of the torque RMS (noise floor {:.2g}, friction sign at reversals "
-        "{:.2g})\n",
-        j + 1, d.gap.residual_rms[j], d.gap.percent[j], d.gap.noise_floor[j], d.gap.sign_floor[j]);
+        "  joint {}: {:.4g} N m RMS = {:.1f} % of the torque RMS (noise floor {:.2g}, positions' noise {:.2g}, "
+        "friction sign at reversals {:.2g})\n",
+        j + 1, d.gap.residual_rms[j], d.gap.percent[j], d.gap.noise_floor[j], d.gap.position_floor[j],
+        d.gap.sign_floor[j]);
   }
   for (const Window& w : d.gap.windows) {
     out += fmt::format("  window {:.1f}-{:.1f} s of log {}: {:.1f}x the usual residual\n", w.start, w.end, w.log + 1,
