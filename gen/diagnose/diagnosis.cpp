@@ -694,10 +694,45 @@ Candidate narrowed_at_best_point(const Effect& chosen, const std::vector<int>& k
   return evaluate(store.back(), accepted, r0, baseline, weight, n);
 }
 
+// Whether the joint fit `cv` of `effects` reads the static excess of effects[k] (a Stribeck
+// friction) above zero on some joint.
+bool holds_an_excess(const std::vector<Effect>& effects, std::size_t k, const CrossValidation& cv) {
+  Eigen::Index at = 0;
+  for (std::size_t i = 0; i < k; ++i) at += effects[i].columns.cols();
+  const Effect& e = effects[k];
+  for (std::size_t c = 0; c < e.parameters.size(); ++c) {
+    if (e.parameters[c].rfind("fs", 0) == 0 && cv.theta[at + static_cast<Eigen::Index>(c)] > 0) return true;
+  }
+  return false;
+}
+
+// A Stribeck friction whose static excess the joint fit of every accepted effect reads as zero or
+// less on each of its joints is the Coulomb friction of those joints: its excess stood in, at the
+// step that accepted it, for an effect accepted later (seed 83 case 39: a Coulomb friction of
+// the Kraft's joint 1 beside a 12 ms delay, fs1 -0.0009 once the delay was in).
+void coulomb_where_no_excess(Diagnosis& out, std::size_t k, const Eigen::VectorXd& r0, const Eigen::VectorXd& weight,
+                             Eigen::Index n) {
+  const Effect& stribeck = out.accepted_effects[k];
+  if (stribeck.name != "stribeck_friction" ||
+      holds_an_excess(out.accepted_effects, k, fit_together(out.accepted_effects, r0, weight, out.away, n))) {
+    return;
+  }
+  Effect coulomb = kept_columns(stribeck, [&](std::size_t c) { return stribeck.parameters[c].rfind("fc", 0) == 0; });
+  coulomb.name = coulomb.family = "coulomb_friction";
+  coulomb.profile_name.clear();
+  coulomb.profile = 0;
+  out.accepted_effects[k] = std::move(coulomb);
+  RankedEffect& r = out.selected[k];
+  r.effect = r.family = "coulomb_friction";
+  r.profile_name.clear();
+  r.profile = 0;
+}
+
 // Each accepted friction profile's point (a Stribeck scale) chosen again beside all the accepted
 // effects, by the joint fit's held-out error on the rows away from zero velocity (as the search
 // chose it): a scale picked before the viscous friction of its joint was fitted is bent to mimic
-// that friction (seed 53 case 9: fs2 0.449 for 0.350 beside a viscous 0.201). Not a contact's
+// that friction (seed 53 case 9: fs2 0.449 for 0.350 beside a viscous 0.201). Where no excess is
+// left at the chosen scale, the Stribeck friction is a Coulomb friction (coulomb_where_no_excess). Not a contact's
 // surface: chosen again among its 180 points beside a payload, it moved the payload's mass by 5 %
 // (seed 23 case 54).
 void rechoose_points(Diagnosis& out, const std::vector<Effect>& effects, const Eigen::VectorXd& r0,
@@ -733,6 +768,7 @@ void rechoose_points(Diagnosis& out, const std::vector<Effect>& effects, const E
     }
     out.accepted_effects[k] = best;
     out.selected[k].profile = best.profile;
+    coulomb_where_no_excess(out, k, r0, weight, n);
   }
 }
 
