@@ -54,15 +54,17 @@ std::string verdict_html(const nlohmann::json& v) {
 std::string gap_html(const nlohmann::json& gap) {
   std::string html =
       "<table><tr><th>joint</th><th>torque RMS (N m)</th><th>held-out gap (N m)</th><th>% of torque RMS</th>"
-      "<th>noise floor (N m)</th><th>after the selected effects (N m)</th><th>% of torque RMS</th></tr>\n";
+      "<th>noise floor (N m)</th><th>positions' noise floor (N m)</th><th>after the selected effects (N m)</th>"
+      "<th>% of torque RMS</th></tr>\n";
   for (std::size_t j = 0; j < gap["torque_rms"].size(); ++j) {
     const double torque = gap["torque_rms"][j].get<double>(),
                  after = gap["heldout_rms_after_selected"][j].get<double>();
-    html +=
-        fmt::format("<tr><td>{}</td><td>{}</td><td>{}</td><td>{:.1f}</td><td>{}</td><td>{}</td><td>{:.1f}</td></tr>\n",
-                    j + 1, number(gap["torque_rms"][j]), number(gap["heldout_rms"][j]),
-                    gap["percent_of_torque_rms"][j].get<double>(), number(gap["noise_floor"][j]),
-                    number(gap["heldout_rms_after_selected"][j]), torque > 0 ? 100 * after / torque : 0.0);
+    html += fmt::format(
+        "<tr><td>{}</td><td>{}</td><td>{}</td><td>{:.1f}</td><td>{}</td><td>{}</td><td>{}</td><td>{:.1f}</td></tr>\n",
+        j + 1, number(gap["torque_rms"][j]), number(gap["heldout_rms"][j]),
+        gap["percent_of_torque_rms"][j].get<double>(), number(gap["noise_floor"][j]),
+        number(gap["position_noise_floor"][j]), number(gap["heldout_rms_after_selected"][j]),
+        torque > 0 ? 100 * after / torque : 0.0);
   }
   html += "</table>\n";
   if (gap["windows"].empty()) {
