@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <map>
+#include <ostream>
 #include <random>
 #include <type_traits>
 
@@ -32,6 +33,11 @@ struct Case {
   std::string parameter;  // the fitted parameter to compare with the injected size ("" = none)
   double tolerance;       // relative (or absolute seconds for the delay)
 };
+
+// Without it gtest prints the case's bytes (pointers and padding) into every ctest name.
+void PrintTo(const Case& c, std::ostream* out) {
+  *out << c.injection.effect << (c.parameter.empty() ? "" : " " + c.parameter);
+}
 
 diagnose::Diagnosis run(const Injection& inject, const diagnose::SyntheticOptions& s, std::string* text = nullptr) {
   const auto path = temp_path(inject.effect + ".csv");
