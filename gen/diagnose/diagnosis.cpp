@@ -11,12 +11,13 @@
 #include <optional>
 
 #include "diagnose/crossval.hpp"
+#include "diagnose/gap.hpp"
+#include "diagnose/plausibility.hpp"
 #include "diagnose/regime_error.hpp"
 
 namespace dyncc::diagnose {
 namespace {
 
-constexpr double kFarthestPoint = 2.0;  // m: a payload or contact point farther from its link is implausible
 // Held-out mean square near zero velocity over that away from it, after the effects' joint fit,
 // beyond which a joint's rows near zero hold a static friction rather than noise.
 constexpr double kStaticFrictionRatio = 2.0;
@@ -347,191 +348,7 @@ RankedEffect describe(const Candidate& c, const Eigen::VectorXd& before, Eigen::
   return r;
 }
 
-// Physical sense of a fit: friction coefficients, a static friction excess, a payload's mass, a
-// contact's force and stiffness (a surface only pushes), a joint's stiffness and a backlash's
-// width are not negative (beyond twice their
-// error). A fit that needs them negative is the effect's columns soaking up something else (e.g.
-// a Stribeck "excess" below Coulomb sharpening a mis-estimated sign near zero velocity).
-// A correction to a quantity the description already has (its Coulomb and viscous friction, its
-// rotor inertia) is judged with it: the total must not be negative, the correction may be.
-// The joint (0-based) of a per-joint parameter named prefix + number ("fc2", "stiffness3"), or -1.
-int joint_of_parameter(const std::string& name, const std::string& prefix) {
-  if (name.rfind(prefix, 0) != 0 || name.size() <= prefix.size()) return -1;
-  return std::atoi(name.c_str() + prefix.size()) - 1;
-}
-
-bool plausible_parameter(const FittedParameter& p, const pipeline::Derivation& derivation, const Gap& gap) {
-  const Eigen::VectorXd& torque_rms = gap.torque_rms;
-  const Eigen::VectorXd nominal = derivation.numeric->nominal_standard_values();
-  const auto& params = derivation.model.params;
-  auto described = [&](const std::string& name, const char* prefix, const std::vector<int>& of) {
-    const int joint = joint_of_parameter(name, prefix);
-    if (joint < 0 || joint >= static_cast<int>(of.size())) return 0.0;
-    const int index = of[static_cast<std::size_t>(joint)];
-    return index >= 0 ? nominal[index] : 0.0;
-  };
-  const bool non_negative = p.name.rfind("fc", 0) == 0 || p.name.rfind("fv", 0) == 0 || p.name.rfind("fs", 0) == 0 ||
-                            p.name == "mass" || p.name.rfind("ia", 0) == 0 || p.name == "force" ||
-                            p.name.rfind("stiffness", 0) == 0 || p.name.rfind("width", 0) == 0 || p.name == "damping" ||
-                            p.name.rfind("friction_", 0) == 0;
-  const double total = p.value + described(p.name, "fc", params.coulomb_of) +
-                       described(p.name, "fv", params.viscous_of) + described(p.name, "ia", params.rotor_of);
-  if (non_negative && total < -2.0 * p.error) return false;
-  // A drive whose torque is off by more than a factor of two is a wrong description, not a gain.
-  if (p.name.rfind("gain", 0) == 0 && (p.value < 0.5 || p.value > 2.0)) return false;
-  // A transmission that gives way by more than twice kLargestDeflection RMS under its joint's
-  // torque, or a dead band wider than four times it (0.1 and 0.2 rad: twice what the bench
-  // draws), is a loose joint or a wrong description (the TX40's wrist read as springs of 2-10
-  // N m/rad, 0.3-0.6 rad under its torque, soaking up what the rotor inertias lack).
-  const int spring = joint_of_parameter(p.name, "stiffness"), band = joint_of_parameter(p.name, "width");
-  if (spring >= 0 && spring < torque_rms.size() &&
-      torque_rms[spring] > 2.0 * kLargestDeflection * (p.value + 2.0 * p.error)) {
-    return false;
-  }
-  if (band >= 0 && band < torque_rms.size() && p.value - 2.0 * p.error > 4.0 * kLargestDeflection) return false;
-  // ... and one that moves the positions by less than the sensor resolves (the larger of its
-  // quantum and noise) is a model mismatch that happens to look like a shift: a spring's RMS
-  // deflection under the joint's torque must be two of those steps (a smooth shift of a step or
-  // so is what quantisation and an estimator's lag make of any mismatch: effect-free
-  // closed-loop Kraft logs at 200 Hz, 1.5 mrad potentiometer steps, were read as springs of
-  // 270-333 N m/rad giving way 0.9-1.6 mrad, and beside a rotor inertia one took 11 % of it); a
-  // dead band jumps by its full width at each turn and half of it must be one step (a 0.64 mrad
-  // band on 0.2 mrad steps is read within 1 %).
-  if (spring >= 0 && spring < torque_rms.size() &&
-      torque_rms[spring] < 2.0 * gap.position_resolution[spring] * std::max(p.value, 1e-12)) {
-    return false;
-  }
-  if (band >= 0 && band < torque_rms.size() && 0.5 * p.value < gap.position_resolution[band]) return false;
-  return true;
-}
-
-bool plausible(const RankedEffect& r, const pipeline::Derivation& derivation, const Gap& gap) {
-  for (const FittedParameter& p : r.parameters) {
-    if (!plausible_parameter(p, derivation, gap)) return false;
-  }
-  // A load or a contact is on the link, not metres away: a first moment with next to no mass (a
-  // payload of 0.1 g at 46 m on a Kraft log whose forearm was read 0.05 rad off) is the columns
-  // mimicking another effect.
-  Eigen::Vector3d point = Eigen::Vector3d::Zero();
-  for (const FittedParameter& p : r.parameters) {
-    if (p.name.size() == 7 && p.name.rfind("point_", 0) == 0) point[p.name[6] - 'x'] = p.value;
-  }
-  return point.norm() <= kFarthestPoint;
-}
-
 double normal_cdf(double x) { return 0.5 * std::erfc(-x / std::sqrt(2.0)); }
-
-// What the model's own friction is uncertain by: its Coulomb term with the velocity estimate off
-// by one standard error (from the positions' noise and quantisation through the filter's
-// bandwidth), through the same filter as the residual. A reversal's sign change is placed only
-// as well as the velocity's zero is known, so this much residual at reversals is no evidence of a
-// missing effect.
-Eigen::VectorXd sign_floor(const Dataset& d, const pipeline::Derivation& derivation) {
-  const Eigen::Index n = d.n, samples = d.samples();
-  const Eigen::VectorXd nominal = derivation.numeric->nominal_standard_values();
-  const auto& coulomb_of = derivation.model.params.coulomb_of;
-  const Eigen::VectorXd error = velocity_error(d);
-  Eigen::VectorXd floor = Eigen::VectorXd::Zero(n);
-  for (Eigen::Index j = 0; j < n && j < static_cast<Eigen::Index>(coulomb_of.size()); ++j) {
-    const int index = coulomb_of[static_cast<std::size_t>(j)];
-    if (index < 0 || nominal[index] == 0) continue;
-    const double velocity_error = error[j];
-    Eigen::MatrixXd change = Eigen::MatrixXd::Zero(samples * n, 1);
-    for (Eigen::Index s = 0; s < samples; ++s) {
-      const double v = d.qd(s, j);
-      change(s * n + j, 0) = 0.5 * nominal[index] * (smooth_sign(v + velocity_error) - smooth_sign(v - velocity_error));
-    }
-    floor[j] = joint_rms(d.condition(change).col(0), n)[j];
-  }
-  return floor;
-}
-
-Gap locate(const Dataset& d, const Eigen::VectorXd& r, const pipeline::Derivation& derivation) {
-  Gap g;
-  const Eigen::Index n = d.n, samples = d.rows();
-  g.residual_rms = joint_rms(r, n);
-  g.torque_rms = analysis_torque_rms(d);
-  g.percent = 100.0 * g.residual_rms.cwiseQuotient(g.torque_rms.cwiseMax(1e-12));
-  g.noise_floor = Eigen::VectorXd::Zero(n);
-  for (std::size_t l = 0; l < d.audits.size(); ++l) {
-    const Audit& a = d.audits[l];
-    const double band = std::sqrt(std::min(1.0, 2.0 * d.cutoff / a.rate));
-    for (Eigen::Index j = 0; j < n; ++j) {
-      g.noise_floor[j] = std::max(g.noise_floor[j], a.joints[static_cast<std::size_t>(j)].torque_noise * band);
-    }
-  }
-  g.position_floor = d.position_noise_torque;
-  g.position_resolution = Eigen::VectorXd::Zero(n);
-  for (const Audit& a : d.audits) {
-    for (Eigen::Index j = 0; j < n; ++j) {
-      const JointAudit& joint = a.joints[static_cast<std::size_t>(j)];
-      g.position_resolution[j] = std::max({g.position_resolution[j], joint.quantum, joint.position_noise});
-    }
-  }
-  g.sign_floor = sign_floor(d, derivation);
-  // Time windows of about 2 s (at least 10 rows), flagged at twice the median window RMS.
-  const auto length = std::max<Eigen::Index>(10, static_cast<Eigen::Index>(2.0 / d.step));
-  std::vector<std::pair<Eigen::Index, double>> windows;
-  for (Eigen::Index begin = 0; begin + length <= samples; begin += length) {
-    double sum = 0;
-    for (Eigen::Index s = begin; s < begin + length; ++s) {
-      for (Eigen::Index j = 0; j < n; ++j) sum += std::pow(r[s * n + j] / std::max(g.torque_rms[j], 1e-12), 2);
-    }
-    windows.emplace_back(begin, std::sqrt(sum / static_cast<double>(length * n)));
-  }
-  if (!windows.empty()) {
-    std::vector<double> values;
-    values.reserve(windows.size());
-    for (const auto& w : windows) values.push_back(w.second);
-    std::nth_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(values.size() / 2), values.end());
-    const double median = values[values.size() / 2];
-    for (const auto& [begin, value] : windows) {
-      if (median > 0 && value > 2.0 * median) {
-        const Eigen::Index last = begin + length - 1;
-        g.windows.push_back(
-            {d.analysis_log[static_cast<std::size_t>(begin)], d.analysis_t[begin], d.analysis_t[last], value / median});
-      }
-    }
-  }
-  // Regimes per joint: near-zero velocity, reversals (sign change within 0.2 s), high acceleration.
-  const char* names[] = {"near_zero_velocity", "reversal", "high_acceleration", "other"};
-  std::vector<Regime> regimes(4);
-  for (int k = 0; k < 4; ++k) {
-    regimes[static_cast<std::size_t>(k)] = {names[k], Eigen::VectorXd::Zero(n), Eigen::VectorXd::Zero(n)};
-  }
-  const auto reach = std::max<Eigen::Index>(1, static_cast<Eigen::Index>(0.2 / d.step));
-  for (Eigen::Index j = 0; j < n; ++j) {
-    Eigen::VectorXd acc = d.analysis_qdd.col(j).cwiseAbs();
-    std::vector<double> sorted(acc.data(), acc.data() + acc.size());
-    std::sort(sorted.begin(), sorted.end());
-    const double high = sorted[static_cast<std::size_t>(0.85 * static_cast<double>(sorted.size() - 1))];
-    const double vmax = d.analysis_qd.col(j).cwiseAbs().maxCoeff();
-    std::array<double, 4> sum{}, count{};
-    for (Eigen::Index s = 0; s < samples; ++s) {
-      bool reversal = false;
-      for (Eigen::Index o = std::max<Eigen::Index>(1, s - reach); o <= std::min(samples - 1, s + reach); ++o) {
-        reversal = reversal ||
-                   (d.analysis_qd(o - 1, j) * d.analysis_qd(o, j) < 0 &&
-                    d.analysis_log[static_cast<std::size_t>(o)] == d.analysis_log[static_cast<std::size_t>(o - 1)]);
-      }
-      int k = 3;
-      if (std::abs(d.analysis_qd(s, j)) < 0.05 * vmax)
-        k = 0;
-      else if (reversal)
-        k = 1;
-      else if (acc[s] >= high)
-        k = 2;
-      sum[static_cast<std::size_t>(k)] += r[s * n + j] * r[s * n + j];
-      count[static_cast<std::size_t>(k)] += 1;
-    }
-    for (std::size_t k = 0; k < 4; ++k) {
-      regimes[k].rms[j] = count[k] > 0 ? std::sqrt(sum[k] / count[k]) : 0.0;
-      regimes[k].share[j] = count[k] / static_cast<double>(samples);
-    }
-  }
-  g.regimes = regimes;
-  return g;
-}
 
 // Parsimony over two steps: a large column set (the whole inertial parameter set re-identified)
 // that two smaller effects explain together as well as it does alone (a rotor inertia and a
@@ -997,7 +814,7 @@ Diagnosis diagnose(const Dataset& d, const pipeline::Derivation& derivation) {
   Diagnosis out;
   const Eigen::Index n = d.n;
   const Eigen::VectorXd r0 = d.residual;
-  out.gap = locate(d, r0, derivation);
+  out.gap = locate_gap(d, r0, derivation);
   const Eigen::VectorXd weight = torque_weights(out.gap.torque_rms);
   out.weight = weight;
   const std::vector<Effect> effects = candidate_effects(d, derivation);

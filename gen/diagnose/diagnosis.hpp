@@ -13,6 +13,7 @@
 #include "diagnose/crossval.hpp"
 #include "diagnose/dataset.hpp"
 #include "diagnose/effects.hpp"
+#include "diagnose/gap.hpp"
 
 namespace dyncc::diagnose {
 
@@ -37,27 +38,6 @@ struct RankedEffect {
   // Friction effects: the shrink on the rows where the velocity is away from zero (what explains
   // residual only near zero is how the friction turns over, not a friction effect).
   std::optional<double> shrink_away_from_zero;
-};
-
-struct Window {
-  int log = 0;
-  double start = 0, end = 0;  // s, the log's clock
-  double rms_ratio = 0;       // window RMS / median window RMS
-};
-
-struct Regime {
-  std::string name;       // "near_zero_velocity", "reversal", "high_acceleration", "other"
-  Eigen::VectorXd rms;    // per joint
-  Eigen::VectorXd share;  // per joint: fraction of the samples in this regime
-};
-
-struct Gap {
-  Eigen::VectorXd torque_rms, residual_rms, percent, noise_floor;  // per joint
-  Eigen::VectorXd sign_floor;           // per joint: the model friction's uncertainty at reversals (see diagnosis.cpp)
-  Eigen::VectorXd position_floor;       // per joint: the rigid model's answer to the positions' noise (dataset.hpp)
-  Eigen::VectorXd position_resolution;  // per joint: the larger of the positions' quantum and noise
-  std::vector<Window> windows;          // flagged time windows (residual well above its usual level)
-  std::vector<Regime> regimes;
 };
 
 struct Verdict {
