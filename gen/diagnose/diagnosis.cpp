@@ -168,6 +168,15 @@ bool clearly_more(const Candidate& a, const Candidate& b) {
   return mean_of(gain) > half_interval(gain) && a.shrink - b.shrink > kAcceptShrink * a.shrink + 0.01;
 }
 
+// Whether `a` explains more than `b` by the margin at which a joint changes hands between
+// per-joint effects. A simpler effect is "as good" as a fuller one only where the fuller one is
+// not better by it: else each gives the joint to the other (a Stribeck friction of the Panda's
+// joint 4 to a spring, simpler, and the spring to the Stribeck friction, better) and neither is
+// named (a 7 % payload led: seed 97 case 29).
+bool better_by_the_margin(const Candidate& a, const Candidate& b) {
+  return a.shrink > b.shrink + kAcceptShrink * b.shrink + 0.01;
+}
+
 Candidate evaluate(const Effect& effect, const Eigen::MatrixXd& accepted, const Eigen::VectorXd& r0,
                    const Eigen::VectorXd& baseline, const Eigen::VectorXd& weight, Eigen::Index n) {
   Candidate c;
@@ -874,7 +883,6 @@ Diagnosis diagnose(const Dataset& d, const pipeline::Derivation& derivation) {
       for (const int joint : r.joints) {
         const Effect mine_effect = narrowed(*chosen.effect, {joint - 1});
         const Candidate mine = evaluate(mine_effect, accepted, r0, baseline, weight, n);
-        const double own = mine.shrink;
         bool beaten = false;
         for (const Effect& e : effects) {
           // An effect whose fit over the arm is implausible never takes its turn (a joint left for
@@ -889,14 +897,9 @@ Diagnosis diagnose(const Dataset& d, const pipeline::Derivation& derivation) {
           const Effect theirs = without_fitted(narrowed(e, {joint - 1}), fitted);
           if (theirs.columns.cols() == 0) continue;
           const Candidate other = evaluate(theirs, accepted, r0, baseline, weight, n);
-          const bool better = other.shrink > own + kAcceptShrink * own + 0.01;
-          // (Not as good where `mine` is better by the margin that makes `other` give way to it:
-          // else each gives the joint to the other, a Stribeck friction of the Panda's joint 4 to a
-          // spring, simpler, and the spring to the Stribeck, better, and a 7 % payload led: seed 97
-          // case 29.)
-          const bool mine_better = own > other.shrink + kAcceptShrink * other.shrink + 0.01;
-          const bool simpler_and_as_good =
-              theirs.columns.cols() < mine_effect.columns.cols() && !clearly_more(mine, other) && !mine_better;
+          const bool better = better_by_the_margin(other, mine);
+          const bool simpler_and_as_good = theirs.columns.cols() < mine_effect.columns.cols() &&
+                                           !clearly_more(mine, other) && !better_by_the_margin(mine, other);
           beaten = (better || simpler_and_as_good) && other.low > 0.0 &&
                    plausible(describe(other, before, accepted.cols(), out.gap.torque_rms), derivation, out.gap);
           if (beaten && simpler_and_as_good && lost_to_simpler != nullptr) *lost_to_simpler = true;  // as good, simpler
