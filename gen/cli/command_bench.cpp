@@ -435,11 +435,13 @@ int run_sim2real_bench(const BenchOptions& o) {
     }
     std::ofstream(dir / "truth.json") << truth_json(k, so, closed).dump(2) << "\n";
 
-    // The diagnosis as its own process, on the log alone.
-    const std::string command =
-        fmt::format("{} diagnose {} {} --json {} > {} 2>&1", shell_quoted(self_path()),
-                    shell_quoted(fs::path(o.robots) / fmt::format("{}.yaml", k.arm)), shell_quoted(dir / "log.csv"),
-                    shell_quoted(dir / "diagnosis.json"), shell_quoted(dir / "diagnosis.txt"));
+    // The diagnosis as its own process, on the log alone. What it is told is how the log was
+    // written, as a user knows it of their own: the closed-loop torque is the controller's
+    // command, held over each period; the open-loop torque is the model's at the row's instant.
+    const std::string command = fmt::format("{} diagnose {} {}{} --json {} > {} 2>&1", shell_quoted(self_path()),
+                                            shell_quoted(fs::path(o.robots) / fmt::format("{}.yaml", k.arm)),
+                                            shell_quoted(dir / "log.csv"), closed ? " --held-torque" : "",
+                                            shell_quoted(dir / "diagnosis.json"), shell_quoted(dir / "diagnosis.txt"));
     const int status = std::system(command.c_str());
     if (status != 0) {
       fmt::print(stderr, "case {}: dyncc diagnose failed (status {}); see {}\n", c, status,

@@ -28,7 +28,9 @@ int run_diagnose(const DiagnoseOptions& o) {
       logs.push_back(
           diagnose::read_joint_log(path, static_cast<Eigen::Index>(derivation->robot.coordinates.size()), renames));
     }
-    data = diagnose::build_dataset(logs, *derivation);
+    diagnose::ConditioningOptions conditioning;
+    conditioning.held_torque = o.held_torque;
+    data = diagnose::build_dataset(logs, *derivation, conditioning);
   } catch (const diagnose::LogError& e) {
     fmt::print(stderr, "{}\n", e.what());
     return kBadInput;

@@ -65,6 +65,7 @@ struct DiagnoseOptions {
   std::string robot;
   std::vector<std::string> logs;
   std::string out, json, map;
+  bool held_torque = false;  // the torque columns are commands held until the next row
 };
 int run_diagnose(const DiagnoseOptions& o);
 

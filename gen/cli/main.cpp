@@ -105,6 +105,9 @@ void add_output_commands(CLI::App& app, int& exit_code) {
                            "Folder for diagnosis.json, summary.txt and report.html (with its figures)");
   diagnose_cmd->add_option("--json", diag->json, "Write the JSON here");
   diagnose_cmd->add_option("--map", diag->map, "Rename foreign columns: THEIR=OURS,... (e.g. time=t,pos1=q1)");
+  diagnose_cmd->add_flag("--held-torque", diag->held_torque,
+                         "The torque columns are commands a digital controller held until the next row (zero-order "
+                         "hold), not torques measured at their time stamps");
   diagnose_cmd->callback([&exit_code, diag] { exit_code = run_diagnose(*diag); });
 
   auto bench = std::make_shared<BenchOptions>();

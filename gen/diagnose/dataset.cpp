@@ -17,6 +17,17 @@ constexpr double kEdgeTrimPeriods = 2.0;   // filter periods dropped at each end
 constexpr double kSensitivityStep = 1e-6;  // rad (or m) for d tau / dq
 constexpr unsigned kNoiseSeed = 1;         // the draw of position_noise_torque (fixed: same log, same diagnosis)
 
+// A held command acts over its whole period: it stands for the torque at the period's middle. On
+// a uniform grid, interpolating between those middles gives each row the mean torque over the
+// period centred on it. The last row's period is taken as long as the one before.
+Eigen::VectorXd held_torque_times(const Eigen::VectorXd& t) {
+  Eigen::VectorXd middle(t.size());
+  for (Eigen::Index i = 0; i + 1 < t.size(); ++i) middle[i] = 0.5 * (t[i] + t[i + 1]);
+  const Eigen::Index last = t.size() - 1;
+  middle[last] = last > 0 ? t[last] + 0.5 * (t[last] - t[last - 1]) : t[last];
+  return middle;
+}
+
 struct Conditioned {
   Eigen::VectorXd t;
   Eigen::MatrixXd q, qd, qdd, tau;
@@ -25,11 +36,12 @@ struct Conditioned {
 
 // Positions filtered and differentiated at the log's own rate, the torque only anti-aliased;
 // then every stride-th row, for at most kEvaluationRate rows per second.
-Conditioned condition_log(const JointLog& log, const Audit& audit, double cutoff) {
+Conditioned condition_log(const JointLog& log, const Audit& audit, double cutoff, bool held_torque) {
   const double dt = 1.0 / audit.rate;
   const auto n = static_cast<Eigen::Index>(std::floor((log.t[log.samples() - 1] - log.t[0]) / dt)) + 1;
   const Eigen::VectorXd grid = Eigen::VectorXd::LinSpaced(n, log.t[0], log.t[0] + dt * static_cast<double>(n - 1));
-  const Eigen::MatrixXd q = interpolate(log.t, log.q, grid), tau = interpolate(log.t, log.tau, grid);
+  const Eigen::MatrixXd q = interpolate(log.t, log.q, grid),
+                        tau = interpolate(held_torque ? held_torque_times(log.t) : log.t, log.tau, grid);
   const auto stride = std::max<Eigen::Index>(1, static_cast<Eigen::Index>(std::floor(audit.rate / kEvaluationRate)));
   const double rate = audit.rate / static_cast<double>(stride);
   Eigen::MatrixXd qf(n, log.joints()), qd(n, log.joints()), qdd(n, log.joints()), taua(n, log.joints());
@@ -78,7 +90,7 @@ Eigen::VectorXd position_noise_torque(const std::vector<JointLog>& logs, const D
       const double sigma = d.audits[l].joints[static_cast<std::size_t>(j)].position_noise;
       for (Eigen::Index s = 0; s < noisy.samples(); ++s) noisy.q(s, j) += sigma * normal(random);
     }
-    const Conditioned c = condition_log(noisy, d.audits[l], d.cutoff);
+    const Conditioned c = condition_log(noisy, d.audits[l], d.cutoff, false);  // its torque is not used
     const Dataset::Segment& g = d.segments[l];
     for (Eigen::Index s = 0; s < c.t.size(); ++s) {
       const dyn::Evaluation e = model.evaluate({c.q.row(s).transpose(), c.qd.row(s).transpose(),
@@ -169,11 +181,12 @@ Dataset build_dataset(const std::vector<JointLog>& logs, const pipeline::Derivat
     lowest_rate = std::min(lowest_rate, d.audits.back().rate);
   }
   d.cutoff = options.cutoff > 0 ? options.cutoff : std::min(lowest_rate / 8.0, kMaxCutoff);
+  d.held_torque = options.held_torque;
 
   std::vector<Conditioned> parts;
   Eigen::Index total = 0;
   for (std::size_t l = 0; l < logs.size(); ++l) {
-    parts.push_back(condition_log(logs[l], d.audits[l], d.cutoff));
+    parts.push_back(condition_log(logs[l], d.audits[l], d.cutoff, options.held_torque));
     const Conditioned& c = parts.back();
     Dataset::Segment g;
     g.begin = total;

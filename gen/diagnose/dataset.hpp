@@ -30,6 +30,10 @@ inline double stribeck_fade(double velocity, double scale) {
 
 struct ConditioningOptions {
   double cutoff = 0;  // Hz; 0 = automatic, min(rate / 8, 4 Hz)
+  // The torque column is a command a digital controller holds from its row until the next one
+  // (zero-order hold), not a torque measured at the row's instant: on average it acts half a
+  // period after its time stamp, a lag that would otherwise read as part of a sensor delay.
+  bool held_torque = false;
 };
 
 /// Two sets of rows. Evaluation rows (at most kEvaluationRate, from filtered positions): where
@@ -41,7 +45,8 @@ struct Dataset {
   Eigen::Index n = 0;  // joints
   std::vector<std::string> logs;
   std::vector<Audit> audits;
-  double cutoff = 0;  // Hz, of the zero-phase filter
+  double cutoff = 0;         // Hz, of the zero-phase filter
+  bool held_torque = false;  // the torque was read as a held command (ConditioningOptions)
 
   // Evaluation rows (stacked over logs; row s*n + i of a stacked matrix is joint i at row s).
   Eigen::VectorXd t;  // per log's own clock

@@ -83,7 +83,8 @@ nlohmann::json diagnosis_json(const Dataset& data, const Diagnosis& d) {
             {"windows", windows},
             {"regimes", regimes}}},
           {"audit", audit},
-          {"filter", {{"cutoff_hz", data.cutoff}, {"row_spacing_s", data.step}, {"rows", data.rows()}}}};
+          {"filter", {{"cutoff_hz", data.cutoff}, {"row_spacing_s", data.step}, {"rows", data.rows()}}},
+          {"torque", data.held_torque ? "held command" : "at its time stamp"}};
 }
 
 std::string diagnosis_text(const Dataset& data, const Diagnosis& d) {
@@ -99,6 +100,7 @@ std::string diagnosis_text(const Dataset& data, const Diagnosis& d) {
                          ja.torque_noise);
     }
   }
+  if (data.held_torque) out += "  torque: a command held over each period (read at the period's middle)\n";
   out += fmt::format("\nheld-out gap of the nominal model (zero-phase filter {:.2f} Hz):\n", data.cutoff);
   for (Eigen::Index j = 0; j < data.n; ++j) {
     out += fmt::format(
