@@ -145,6 +145,9 @@ bool run_excite(const Run& k, const std::vector<diagnose::Injection>& effects, c
 
 // What the diagnosis would see of a closed-loop log: its residual against the nominal model, and
 // the torque RMS per joint. An effect's size is the RMS of the change it makes to that residual.
+// Read with the torque at its time stamps, as when the bench's draws were made: the held command's
+// half period shifts the clean and the probe run alike, so it hardly moves a difference's RMS,
+// and reading it held here would change every seed's drawn sizes.
 struct Seen {
   Eigen::VectorXd residual, torque_rms;
   diagnose::Dataset data;
