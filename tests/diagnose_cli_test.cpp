@@ -247,6 +247,25 @@ TEST(DiagnoseCommand, TeleoperationPayloadIsFittedAwayFromTheRowsWhereTheArmRest
   EXPECT_NEAR(fitted["mass"], mass, 0.03 * mass);
 }
 
+// The same task on the blind seed 97, case 57 (on the hook from 17.000 s to 58.866 s): the arm
+// holds still from 8 s to 16 s before the pick-up, and static friction keeps an offset there that
+// the model does not have. The window chosen by what its fit explains in sample took that hold
+// in: picked up at 6.8 s, the mass 26 % low (0.0077 kg). Chosen by what it explains held out, the
+// pick-up is found within a second and the mass within 10 % (0.65 s early and 6 % low: the
+// bench's 3 % is not met on this log).
+TEST(DiagnoseCommand, TeleoperationPayloadWindowDoesNotTakeInTheHoldBeforeThePickUp) {
+  const double mass = 0.010418162701672565;
+  const nlohmann::json d =
+      diagnose_excited("teleop_payload_hold",
+                       fmt::format(R"({{"effects": [{{"effect": "payload", "parameters": {{"mass": {}}}}}]}})", mass),
+                       "--plant mujoco --trajectory teleop --rate 500 --seed 97057");
+  EXPECT_EQ(d["verdict"]["effect"], "payload") << d["verdict"].dump();
+  std::map<std::string, double> fitted = fitted_of(d);
+  ASSERT_TRUE(fitted.count("mass") && fitted.count("picked_up_at")) << d["selected"].dump();
+  EXPECT_NEAR(fitted["picked_up_at"], 17.0, 1.0);
+  EXPECT_NEAR(fitted["mass"], mass, 0.1 * mass);
+}
+
 // Blind bench seed 61, case 18: a Stribeck excess of joint 1 at 5 % of the torque RMS on the rigid
 // plant's tele-operation log (1 kHz). The first step chooses the plant's velocity scale (0.1 rad/s);
 // narrowed to joint 1, a wider scale fits the rows away from zero velocity a little better, within

@@ -2,8 +2,9 @@
 // experiments) changes the torque only inside a time window, so a payload fitted over the whole
 // log explains it half and varies wildly between the folds. The window is found from the data:
 // the interval of one log whose gated payload columns explain the most of the nominal residual
-// in a least-squares sense, searched on a coarse grid of the analysis rows and then refined edge
-// by edge to single rows. Running sums over time make every window's fit a k x k solve.
+// held out (each cross-validation block inside the window predicted by the fit on the window's
+// other rows), searched on a coarse grid of the analysis rows and then refined edge by edge to
+// single rows. Running sums over time make every window's fit a few k x k solves.
 #pragma once
 
 #include <Eigen/Dense>
@@ -17,7 +18,7 @@ struct PayloadWindow {
   int log = 0;
   Eigen::Index first_row = 0, end_row = 0;  // analysis rows [first_row, end_row)
   double start = 0, end = 0;                // s on the log's clock; -inf / +inf at the log's ends
-  double explained = 0;                     // weighted sum of squares the gated fit removes
+  double explained = 0;                     // weighted sum of squares the gated fit removes, held out
 };
 
 /// The best proper sub-window (not the whole log: that is the constant payload) of any log, for
