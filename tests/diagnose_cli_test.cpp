@@ -234,7 +234,7 @@ TEST(DiagnoseCommand, ViscousFrictionIsNotLostToTheDelayItsOtherJointsMimic) {
 // hook from 17 s on (5 % of the torque). The arm rests in 75 % of the rows, and there the torque
 // balance holds a static friction anywhere within +-fc, which takes up part of the load: fitted
 // through those rows the mass read 22 % low (0.0081 kg). A joint whose held-out residual near zero
-// velocity is over twice that away from it is fitted again without those rows.
+// velocity is larger than that away from it is fitted again without those rows.
 TEST(DiagnoseCommand, TeleoperationPayloadIsFittedAwayFromTheRowsWhereTheArmRests) {
   const double mass = 0.0103858;
   const nlohmann::json d =
@@ -247,11 +247,27 @@ TEST(DiagnoseCommand, TeleoperationPayloadIsFittedAwayFromTheRowsWhereTheArmRest
   EXPECT_NEAR(fitted["mass"], mass, 0.03 * mass);
 }
 
+// The same task on the blind seed 59, case 33 (a 10 g payload, 5 % of the torque): joints 2 and 3
+// rest 5-7 times worse than they move and left their rows at rest out, but the base joint, 1.1
+// times worse, kept them while the bar was twice, and its static friction took up part of the
+// payload's coupling torques: the mass read 3.8 % low (0.01006 kg). Any excess drops them.
+TEST(DiagnoseCommand, TeleoperationPayloadIsNotTakenUpByTheBaseJointsStaticFriction) {
+  const double mass = 0.010460572454548567;
+  const nlohmann::json d =
+      diagnose_excited("teleop_payload_base",
+                       fmt::format(R"({{"effects": [{{"effect": "payload", "parameters": {{"mass": {}}}}}]}})", mass),
+                       "--plant mujoco --trajectory teleop --rate 500 --seed 59033");
+  EXPECT_EQ(d["verdict"]["effect"], "payload") << d["verdict"].dump();
+  std::map<std::string, double> fitted = fitted_of(d);
+  ASSERT_TRUE(fitted.count("mass")) << d["selected"].dump();
+  EXPECT_NEAR(fitted["mass"], mass, 0.03 * mass);
+}
+
 // The same task on the blind seed 97, case 57 (on the hook from 17.000 s to 58.866 s): the arm
 // holds still from 8 s to 16 s before the pick-up, and static friction keeps an offset there that
 // the model does not have. The window chosen by what its fit explains in sample took that hold
 // in: picked up at 6.8 s, the mass 26 % low (0.0077 kg). Chosen by what it explains held out, the
-// pick-up is found within a second and the mass within 10 % (0.65 s early and 6 % low: the
+// pick-up is found within a second and the mass within 10 % (0.65 s early and 4.6 % low: the
 // bench's 3 % is not met on this log).
 TEST(DiagnoseCommand, TeleoperationPayloadWindowDoesNotTakeInTheHoldBeforeThePickUp) {
   const double mass = 0.010418162701672565;
