@@ -51,7 +51,7 @@ CrossValidation cross_validate(const Eigen::VectorXd& r, const Eigen::MatrixXd& 
   const Eigen::VectorXd wr = w.asDiagonal() * r;
   const Eigen::VectorXd scale = column_scale(we);
   for (int f = 0; f < kFolds; ++f) {
-    const Eigen::Index begin = samples * f / kFolds, end = samples * (f + 1) / kFolds;
+    const Eigen::Index begin = fold_begin(samples, f), end = fold_begin(samples, f + 1);
     cv.fold_end.push_back(end);
     const Eigen::Index train = samples - (end - begin);
     Eigen::MatrixXd a(train * joints, k);

@@ -11,6 +11,10 @@ namespace dyncc::diagnose {
 
 inline constexpr int kFolds = 5;
 
+/// The first sample of block f (0 <= f <= kFolds; block f is [fold_begin(f), fold_begin(f + 1))):
+/// K contiguous blocks of nearly equal length over `samples`.
+inline Eigen::Index fold_begin(Eigen::Index samples, int f) { return samples * f / kFolds; }
+
 struct CrossValidation {
   Eigen::VectorXd heldout;             // S*n: the residual left on each row when its block was held out
   Eigen::VectorXd theta;               // fitted on all rows
