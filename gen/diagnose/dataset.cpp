@@ -30,7 +30,7 @@ Eigen::VectorXd held_torque_times(const Eigen::VectorXd& t) {
 
 struct Conditioned {
   Eigen::VectorXd t;
-  Eigen::MatrixXd q, qd, qdd, tau;
+  Eigen::MatrixXd q, qd, qdd, tau, q_sharp;
   double rate = 0;
 };
 
@@ -44,7 +44,8 @@ Conditioned condition_log(const JointLog& log, const Audit& audit, double cutoff
                         tau = interpolate(held_torque ? held_torque_times(log.t) : log.t, log.tau, grid);
   const auto stride = std::max<Eigen::Index>(1, static_cast<Eigen::Index>(std::floor(audit.rate / kEvaluationRate)));
   const double rate = audit.rate / static_cast<double>(stride);
-  Eigen::MatrixXd qf(n, log.joints()), qd(n, log.joints()), qdd(n, log.joints()), taua(n, log.joints());
+  Eigen::MatrixXd qf(n, log.joints()), qd(n, log.joints()), qdd(n, log.joints()), taua(n, log.joints()),
+      qa(n, log.joints());
   const Eigen::MatrixXd measured_rate = log.qd ? interpolate(log.t, *log.qd, grid) : Eigen::MatrixXd();
   for (Eigen::Index k = 0; k < log.joints(); ++k) {
     qf.col(k) = zero_phase_lowpass(q.col(k), cutoff, audit.rate);
@@ -52,6 +53,7 @@ Conditioned condition_log(const JointLog& log, const Audit& audit, double cutoff
     qd.col(k) = log.qd ? zero_phase_lowpass(measured_rate.col(k), cutoff, audit.rate) : derivative(qf.col(k), dt);
     qdd.col(k) = derivative(qd.col(k), dt);
     taua.col(k) = stride > 1 ? zero_phase_lowpass(tau.col(k), 0.4 * rate, audit.rate) : Eigen::VectorXd(tau.col(k));
+    qa.col(k) = stride > 1 ? zero_phase_lowpass(q.col(k), 0.4 * rate, audit.rate) : Eigen::VectorXd(q.col(k));
   }
   Conditioned c;
   c.rate = rate;
@@ -61,12 +63,14 @@ Conditioned condition_log(const JointLog& log, const Audit& audit, double cutoff
   c.qd.resize(m, log.joints());
   c.qdd.resize(m, log.joints());
   c.tau.resize(m, log.joints());
+  c.q_sharp.resize(m, log.joints());
   for (Eigen::Index r = 0; r < m; ++r) {
     c.t[r] = grid[r * stride];
     c.q.row(r) = qf.row(r * stride);
     c.qd.row(r) = qd.row(r * stride);
     c.qdd.row(r) = qdd.row(r * stride);
     c.tau.row(r) = taua.row(r * stride);
+    c.q_sharp.row(r) = qa.row(r * stride);
   }
   return c;
 }
@@ -208,6 +212,7 @@ Dataset build_dataset(const std::vector<JointLog>& logs, const pipeline::Derivat
   const Eigen::Index n = d.n;
   d.t.resize(total);
   d.q.resize(total, n);
+  d.q_sharp.resize(total, n);
   d.qd.resize(total, n);
   d.qdd.resize(total, n);
   d.tau.resize(total, n);
@@ -244,6 +249,7 @@ Dataset build_dataset(const std::vector<JointLog>& logs, const pipeline::Derivat
       d.t[row] = c.t[s];
       d.log_of.push_back(static_cast<int>(l));
       d.q.row(row) = c.q.row(s);
+      d.q_sharp.row(row) = c.q_sharp.row(s);
       d.qd.row(row) = c.qd.row(s);
       d.qdd.row(row) = c.qdd.row(s);
       d.tau.row(row) = c.tau.row(s);

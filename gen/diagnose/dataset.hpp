@@ -52,10 +52,14 @@ struct Dataset {
   Eigen::VectorXd t;  // per log's own clock
   std::vector<int> log_of;
   Eigen::MatrixXd q, qd, qdd, tau;  // tau only anti-aliased here
-  Eigen::MatrixXd model_tau;        // nominal model (Coulomb with the smoothed sign)
-  Eigen::MatrixXd model_friction;   // its friction part (the description's, Coulomb smoothed alike)
-  Eigen::MatrixXd model_tau_rate;   // d model_tau / dt
-  Eigen::MatrixXd base_rigid;       // S*n x r': base regressor without friction columns
+  // Positions only anti-aliased, as the torque: where a nonlinear function of them acts within a
+  // filter period (a table touched for 30 ms), it is evaluated on these and filtered after, as the
+  // torque it adds is; on the low-passed q the touch's dip is smoothed away.
+  Eigen::MatrixXd q_sharp;
+  Eigen::MatrixXd model_tau;       // nominal model (Coulomb with the smoothed sign)
+  Eigen::MatrixXd model_friction;  // its friction part (the description's, Coulomb smoothed alike)
+  Eigen::MatrixXd model_tau_rate;  // d model_tau / dt
+  Eigen::MatrixXd base_rigid;      // S*n x r': base regressor without friction columns
   std::vector<std::string> base_rigid_names;
   Eigen::MatrixXd standard;              // S*n x p: standard regressor (for the payload link's columns)
   std::vector<Eigen::MatrixXd> dtau_dq;  // S of n x n: d model_tau / dq

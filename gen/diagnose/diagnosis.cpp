@@ -10,6 +10,7 @@
 #include <numeric>
 #include <optional>
 
+#include "diagnose/contact_effect.hpp"
 #include "diagnose/crossval.hpp"
 #include "diagnose/gap.hpp"
 #include "diagnose/plausibility.hpp"
@@ -511,7 +512,7 @@ double half_point_spread(const Candidate& c) {
 // to fit a Coulomb friction of another joint) need not suit these, yet on one joint whose excess
 // is near the noise where it moves, the best point there is a draw of that noise (seed 61 case
 // 18: the step's scale 0.1 gave way to 0.15, and fs1 read 0.054 for 0.0705).
-Candidate narrowed_at_best_point(const Effect& chosen, const std::vector<int>& kept, const std::vector<Effect>& effects,
+Candidate narrowed_at_best_point(const Effect& chosen, const std::vector<int>& kept, const std::deque<Effect>& effects,
                                  const std::vector<std::string>& fitted, std::deque<Effect>& store,
                                  const Eigen::MatrixXd& accepted, const Eigen::VectorXd& r0,
                                  const Eigen::VectorXd& baseline, const Eigen::VectorXd& weight,
@@ -575,7 +576,7 @@ void coulomb_where_no_excess(Diagnosis& out, std::size_t k, const Eigen::VectorX
 // left at the chosen scale, the Stribeck friction is a Coulomb friction (coulomb_where_no_excess). Not a contact's
 // surface: chosen again among its 180 points beside a payload, it moved the payload's mass by 5 %
 // (seed 23 case 54).
-void rechoose_points(Diagnosis& out, const std::vector<Effect>& effects, const Eigen::VectorXd& r0,
+void rechoose_points(Diagnosis& out, const std::deque<Effect>& effects, const Eigen::VectorXd& r0,
                      const Eigen::VectorXd& weight, Eigen::Index n) {
   if (out.accepted_effects.size() < 2) return;
   for (std::size_t k = 0; k < out.accepted_effects.size(); ++k) {
@@ -821,6 +822,65 @@ Candidate judged(const Effect& e, const StepState& s, std::deque<Effect>& narrow
   return c;
 }
 
+// The contact's point searched locally (contact_effect.hpp) from the two best distinct points of
+// its grid, at the first step, when the grid's best explains at least kAcceptShrink held out (a
+// log without a touch is not searched: its best grid point is a fit to noise). The points the
+// searches reach join the effects, for this step (`consider`) and the later ones.
+template <typename Consider>
+void search_contacts(const Dataset& d, const StepState& s, std::vector<std::pair<const Effect*, ContactFit>> grid,
+                     std::deque<Effect>& effects, std::deque<Effect>& narrowed_effects, Consider consider) {
+  constexpr int kStarts = 2;
+  std::sort(grid.begin(), grid.end(), [](const auto& a, const auto& b) { return a.second.shrink > b.second.shrink; });
+  if (grid.empty() || grid.front().second.shrink < kAcceptShrink) return;
+  const ContactRows rows(d, s.derivation);
+  const ContactJudge judge = [&](const Effect& e) {
+    const Candidate c = judged(e, s, narrowed_effects);
+    return ContactFit{c.plausible, c.shrink};
+  };
+  std::vector<Eigen::Vector3d> started;
+  for (const auto& [effect, fit] : grid) {
+    const ContactPoint start = ContactPoint::of(*effect);
+    if (static_cast<int>(started.size()) == kStarts) break;
+    if (std::find(started.begin(), started.end(), start.point) != started.end()) continue;
+    started.push_back(start.point);
+    for (const ContactPoint& p : search_contact(rows, start, fit, judge)) {
+      effects.push_back(rows.effect(p));
+      consider(judged(effects.back(), s, narrowed_effects));
+    }
+  }
+}
+
+// Every remaining candidate on top of what is accepted (its parameters already fitted left out),
+// and the best profile point per effect; at the first step the contact's point is also searched
+// (search_contacts).
+std::map<std::string, Candidate> best_candidates(const Dataset& d, const StepState& s, bool first_step,
+                                                 const std::vector<std::string>& taken,
+                                                 const std::vector<std::string>& fitted, std::deque<Effect>& effects,
+                                                 std::deque<Effect>& narrowed_effects) {
+  std::map<std::string, Candidate> best;
+  auto consider = [&](Candidate c) {
+    auto it = best.find(c.effect->name);
+    const bool better = it == best.end() || (c.plausible && !it->second.plausible) ||
+                        (c.plausible == it->second.plausible && point_key(c) > point_key(it->second));
+    if (better) best[c.effect->name] = std::move(c);
+  };
+  std::vector<std::pair<const Effect*, ContactFit>> contact_grid;  // the first step's, as judged
+  for (const Effect& whole : effects) {
+    if (std::find(taken.begin(), taken.end(), whole.family) != taken.end()) continue;
+    const Effect* use = &whole;
+    if (shares_fitted(whole, fitted)) {
+      narrowed_effects.push_back(without_fitted(whole, fitted));
+      use = &narrowed_effects.back();
+      if (use->columns.cols() == 0) continue;
+    }
+    Candidate c = judged(*use, s, narrowed_effects);
+    if (first_step && use->family == "contact") contact_grid.emplace_back(use, ContactFit{c.plausible, c.shrink});
+    consider(std::move(c));
+  }
+  if (first_step) search_contacts(d, s, contact_grid, effects, narrowed_effects, consider);
+  return best;
+}
+
 // Whether a candidate may be accepted: plausible, significant (for a friction, possibly only where
 // its joints move), material, and removing kAcceptShrink of the held-out error. A friction effect
 // must also explain residual where the velocity is away from zero: one that only fits the rows
@@ -840,7 +900,8 @@ Diagnosis diagnose(const Dataset& d, const pipeline::Derivation& derivation) {
   out.gap = locate_gap(d, r0, derivation);
   const Eigen::VectorXd weight = torque_weights(out.gap.torque_rms);
   out.weight = weight;
-  const std::vector<Effect> effects = candidate_effects(d, derivation);
+  std::deque<Effect> effects;  // stable addresses: candidates point at their effect; a search adds to it
+  for (Effect& e : candidate_effects(d, derivation)) effects.push_back(std::move(e));
   out.away = away_from_zero_velocity(d);
   const Eigen::VectorXd& away = out.away;
 
@@ -851,25 +912,10 @@ Diagnosis diagnose(const Dataset& d, const pipeline::Derivation& derivation) {
   std::vector<std::string> taken;
   std::vector<std::string> fitted;  // the per-joint parameters accepted so far ("fc2", ...)
   for (int step = 0; step < kMaxEffects; ++step) {
-    // Every remaining candidate on top of what is accepted; the best profile point per effect.
-    std::map<std::string, Candidate> best;
     const Eigen::VectorXd before = joint_rms(baseline, n);
     const StepState step_state{accepted, r0, baseline, weight, away, before, out.gap, derivation};
-    for (const Effect& whole : effects) {
-      if (std::find(taken.begin(), taken.end(), whole.family) != taken.end()) continue;
-      const Effect* use = &whole;
-      if (shares_fitted(whole, fitted)) {
-        narrowed_effects.push_back(without_fitted(whole, fitted));
-        use = &narrowed_effects.back();
-        if (use->columns.cols() == 0) continue;
-      }
-      const Effect& e = *use;
-      Candidate c = judged(e, step_state, narrowed_effects);
-      auto it = best.find(e.name);
-      const bool better = it == best.end() || (c.plausible && !it->second.plausible) ||
-                          (c.plausible == it->second.plausible && point_key(c) > point_key(it->second));
-      if (better) best[e.name] = std::move(c);
-    }
+    std::map<std::string, Candidate> best =
+        best_candidates(d, step_state, step == 0, taken, fitted, effects, narrowed_effects);
     if (best.empty()) break;
     std::vector<const Candidate*> order;
     order.reserve(best.size());

@@ -6,7 +6,7 @@
 #include <cmath>
 #include <numbers>
 
-#include "diagnose/contact.hpp"
+#include "diagnose/contact_effect.hpp"
 #include "diagnose/payload.hpp"
 #include "diagnose/shifted_positions.hpp"
 #include "diagnose/signals.hpp"
@@ -50,85 +50,6 @@ Effect per_joint(const Dataset& d, const std::string& name, const std::string& p
     e.reading.push_back(reading);
   }
   return e;
-}
-
-// Contact with a horizontal surface (perpendicular to gravity) at a point c of the payload link
-// frame, pushing up while the point is below the surface height h: a normal force
-// N = f0 + k (h - z_c) + d (-dz_c/dt) along -gravity and a friction force mu N against the
-// point's horizontal sliding. The normal force's torque is J_c^T N (-g^), and J_c^T (-g^) is the
-// gradient of the point's height, i.e. the gravity part of the link's mass and first-moment
-// regressor columns over |g|; so the force and its moments F c are linear columns (the fit
-// re-estimates the point), and only the gate (z_c < h), the spring's and the damper's lever and
-// the sliding direction need the point and the height, which come from a small grid: a
-// two-dimensional profile (point along the link's x and z axes, height at quantiles of z_c). The
-// friction columns carry mu f0 and mu k (sliding needs the point's horizontal velocity: the
-// link's Jacobian).
-constexpr double kContactPoints[] = {-1.0, -0.5, 0.0, 0.5, 1.0, 1.5};  // times the arm's scale
-constexpr double kContactQuantiles[] = {0.02, 0.05, 0.1, 0.2, 0.3};    // of the point's height
-constexpr double kSlipVelocity = 0.005;  // m/s: slower sliding is not resolved (friction turns over)
-
-void add_contact_effects(const Dataset& d, const pipeline::Derivation& derivation, std::vector<Effect>& out) {
-  const ContactGeometry geometry(derivation);
-  if (!geometry.valid()) return;
-  const Eigen::Index n = d.n, samples = d.samples();
-  Eigen::MatrixXd height(samples, 4), lever(samples * n, 4);
-  std::vector<ContactGeometry::Frame> frames;
-  frames.reserve(static_cast<std::size_t>(samples));
-  for (Eigen::Index s = 0; s < samples; ++s) {
-    const ContactGeometry::Basis b = geometry.at(d.q.row(s).transpose());
-    height.row(s) = b.height.transpose();
-    lever.middleRows(s * n, n) = b.lever;
-    frames.push_back(geometry.frame(d.q.row(s).transpose()));
-  }
-  const double scale = ContactGeometry::scale(height.col(0));
-  const Eigen::Vector3d down = geometry.down();
-  const char* names[] = {"force",     "moment_x", "moment_y",       "moment_z",
-                         "stiffness", "damping",  "friction_force", "friction_stiffness"};
-  for (const double cx : kContactPoints) {
-    for (const double cz : kContactPoints) {
-      const Eigen::Vector3d c(cx * scale, 0.0, cz * scale);
-      const Eigen::VectorXd z = height.col(0) + height.rightCols(3) * c;
-      // Per sample: the point's sinking rate (down . v) and J_c^T of its sliding direction.
-      Eigen::VectorXd sinking(samples);
-      Eigen::MatrixXd sliding(samples * n, 1);
-      for (Eigen::Index s = 0; s < samples; ++s) {
-        const Eigen::MatrixXd jacobian = frames[static_cast<std::size_t>(s)].point_jacobian(c);
-        const Eigen::Vector3d v = jacobian * d.qd.row(s).transpose();
-        sinking[s] = down.dot(v);
-        const Eigen::Vector3d horizontal = v - sinking[s] * down;
-        const Eigen::Vector3d direction =
-            horizontal / std::sqrt(horizontal.squaredNorm() + kSlipVelocity * kSlipVelocity);
-        sliding.middleRows(s * n, n) = jacobian.transpose() * direction;
-      }
-      std::vector<double> sorted(z.data(), z.data() + z.size());
-      std::sort(sorted.begin(), sorted.end());
-      for (const double quantile : kContactQuantiles) {
-        const double h = sorted[static_cast<std::size_t>(quantile * static_cast<double>(sorted.size() - 1))];
-        Effect e;
-        e.name = e.family = "contact";
-        e.columns = Eigen::MatrixXd::Zero(samples * n, 8);
-        for (Eigen::Index s = 0; s < samples; ++s) {
-          if (z[s] >= h) continue;
-          const auto rows = lever.middleRows(s * n, n);
-          const Eigen::VectorXd at_point = rows.col(0) + rows.rightCols(3) * c;
-          e.columns.block(s * n, 0, n, 4) = rows;
-          e.columns.block(s * n, 4, n, 1) = at_point * (h - z[s]);
-          e.columns.block(s * n, 5, n, 1) = at_point * sinking[s];
-          e.columns.block(s * n, 6, n, 1) = sliding.middleRows(s * n, n);
-          e.columns.block(s * n, 7, n, 1) = sliding.middleRows(s * n, n) * (h - z[s]);
-        }
-        for (const char* name : names) {
-          e.parameters.emplace_back(name);
-          e.joint_of.push_back(-1);
-          e.reading.push_back(Reading::as_is);
-        }
-        e.profile_name = "surface_height";
-        e.profile = h;
-        e.columns = d.condition(e.columns);
-        out.push_back(std::move(e));
-      }
-    }
-  }
 }
 
 }  // namespace

@@ -33,6 +33,9 @@ struct Effect {
   std::string profile_name;             // "velocity_scale" for a profile effect, else empty
   double profile = 0;
   std::vector<ShapeValue> shape;
+  // A profile of more than one dimension: its coordinates, where a local search may start from (a
+  // contact: its point's x and z in the link frame, m, and its surface's quantile).
+  std::vector<double> profile_point;
   std::string family;  // effects of one family are alternatives of each other
 };
 
