@@ -10,12 +10,15 @@ constexpr double kContactPoints[] = {-1.0, -0.5, 0.0, 0.5, 1.0, 1.5};  // times 
 // Of the point's height over the log. The smallest ones for brief touches: a MuJoCo table 5 mm
 // above the Kraft hook's lowest point is touched in 0.2 % of the rows (seed 107 case 3).
 constexpr double kContactQuantiles[] = {0.003, 0.01, 0.02, 0.05, 0.1, 0.2, 0.3};
+// A point held on the surface rests there for a while (a tele-operator's hook put down on the table
+// 17 % of the log).
+constexpr double kHeldQuantiles[] = {0.05, 0.1, 0.2, 0.3};
 constexpr double kSlipVelocity = 0.005;  // m/s: slower sliding is not resolved (friction turns over)
 
 // The search. The grid's spacing (half the arm's scale) is far coarser than a touch resolves: on
 // that log the hook is 0.40 m along the forearm, beyond the grid's farthest point (0.26 m), and
-// a gate on a point 5 cm off the hook holds rows where that point, not the hook, is low (a third
-// of what the hook's own gate explains, and implausible).
+// a gate on a point 5 cm off the hook holds rows where that point, not the hook, is low (about
+// half of what the hook's own gate explains, and implausibly).
 constexpr double kFirstStep = 0.25;      // of the scale
 constexpr double kFinestStep = 0.03;     // of the scale: the search stops below it
 constexpr double kQuantileFactor = 2.0;  // the quantile's first step (shrinks with the point's)
@@ -24,13 +27,15 @@ constexpr double kLargestQuantile = 0.5;
 constexpr Eigen::Index kFewestTouchRows = 5;  // evaluation rows below the surface, at least
 constexpr int kMostJudged = 90;               // points judged per search
 
-bool same(const ContactPoint& a, const ContactPoint& b) { return a.point == b.point && a.quantile == b.quantile; }
+bool same(const ContactPoint& a, const ContactPoint& b) {
+  return a.point == b.point && a.quantile == b.quantile && a.held == b.held;
+}
 
 }  // namespace
 
 ContactPoint ContactPoint::of(const Effect& contact) {
   const std::vector<double>& c = contact.profile_point;
-  return c.size() == 3 ? ContactPoint{Eigen::Vector3d(c[0], 0.0, c[1]), c[2]} : ContactPoint{};
+  return c.size() == 4 ? ContactPoint{Eigen::Vector3d(c[0], 0.0, c[1]), c[2], c[3] != 0.0} : ContactPoint{};
 }
 
 ContactRows::ContactRows(const Dataset& d, const pipeline::Derivation& derivation) : d_(&d) {
@@ -51,6 +56,12 @@ ContactRows::ContactRows(const Dataset& d, const pipeline::Derivation& derivatio
   }
   scale_ = ContactGeometry::scale(height_.col(0));
   down_ = geometry.down();
+  // Two horizontal directions: the base axis least along gravity, made perpendicular to it, and
+  // the one perpendicular to both.
+  Eigen::Index axis = 0;
+  down_.cwiseAbs().minCoeff(&axis);
+  across_[0] = (Eigen::Vector3d::Unit(axis) - down_.dot(Eigen::Vector3d::Unit(axis)) * down_).normalized();
+  across_[1] = down_.cross(across_[0]);
 }
 
 double ContactRows::clamped(double quantile) const {
@@ -63,9 +74,9 @@ std::vector<ContactPoint> ContactRows::grid() const {
   std::vector<ContactPoint> out;
   for (const double cx : kContactPoints) {
     for (const double cz : kContactPoints) {
-      for (const double quantile : kContactQuantiles) {
-        out.push_back({Eigen::Vector3d(cx * scale_, 0.0, cz * scale_), quantile});
-      }
+      const Eigen::Vector3d point(cx * scale_, 0.0, cz * scale_);
+      for (const double quantile : kContactQuantiles) out.push_back({point, quantile, false});
+      for (const double quantile : kHeldQuantiles) out.push_back({point, quantile, true});
     }
   }
   return out;
@@ -82,6 +93,28 @@ Effect ContactRows::effect(const ContactPoint& at) const {
   const double h = sorted[static_cast<std::size_t>(k)];
   Effect e;
   e.name = e.family = "contact";
+  e.profile_name = "surface_height";
+  e.profile = h;
+  e.profile_point = at.coordinates();
+  if (at.held) {
+    // Minus the torque of the upward push and of the two horizontal holds, all at c.
+    e.columns = Eigen::MatrixXd::Zero(samples * n, 3);
+    for (Eigen::Index s = 0; s < samples; ++s) {
+      if (z[s] >= h) continue;
+      const Eigen::MatrixXd jacobian = frames_[static_cast<std::size_t>(s)].point_jacobian(c);
+      const auto rows = lever_.middleRows(s * n, n);
+      e.columns.block(s * n, 0, n, 1) = rows.col(0) + rows.rightCols(3) * c;
+      e.columns.block(s * n, 1, n, 1) = -jacobian.transpose() * across_[0];
+      e.columns.block(s * n, 2, n, 1) = -jacobian.transpose() * across_[1];
+    }
+    for (const char* name : {"force", "hold_a", "hold_b"}) {
+      e.parameters.emplace_back(name);
+      e.joint_of.push_back(-1);
+      e.reading.push_back(Reading::as_is);
+    }
+    e.columns = d.condition(e.columns);
+    return e;
+  }
   e.columns = Eigen::MatrixXd::Zero(samples * n, 8);
   for (Eigen::Index s = 0; s < samples; ++s) {
     if (z[s] >= h) continue;
@@ -106,9 +139,6 @@ Effect ContactRows::effect(const ContactPoint& at) const {
     e.joint_of.push_back(-1);
     e.reading.push_back(Reading::as_is);
   }
-  e.profile_name = "surface_height";
-  e.profile = h;
-  e.profile_point = at.coordinates();
   e.columns = d.condition(e.columns);
   return e;
 }
@@ -129,9 +159,12 @@ std::vector<ContactPoint> search_contact(const ContactRows& rows, const ContactP
     ContactPoint best = at;
     ContactFit best_fit = at_fit;
     const ContactPoint moves[] = {
-        {at.point + Eigen::Vector3d(step, 0, 0), at.quantile}, {at.point - Eigen::Vector3d(step, 0, 0), at.quantile},
-        {at.point + Eigen::Vector3d(0, 0, step), at.quantile}, {at.point - Eigen::Vector3d(0, 0, step), at.quantile},
-        {at.point, rows.clamped(at.quantile * factor)},        {at.point, rows.clamped(at.quantile / factor)},
+        {at.point + Eigen::Vector3d(step, 0, 0), at.quantile, at.held},
+        {at.point - Eigen::Vector3d(step, 0, 0), at.quantile, at.held},
+        {at.point + Eigen::Vector3d(0, 0, step), at.quantile, at.held},
+        {at.point - Eigen::Vector3d(0, 0, step), at.quantile, at.held},
+        {at.point, rows.clamped(at.quantile * factor), at.held},
+        {at.point, rows.clamped(at.quantile / factor), at.held},
     };
     for (const ContactPoint& next : moves) {
       if (same(next, at)) continue;

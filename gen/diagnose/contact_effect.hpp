@@ -21,12 +21,24 @@
 
 namespace dyncc::diagnose {
 
-/// A point of the payload link (m, link frame) and the surface at a quantile of its height.
+/// A point of the payload link (m, link frame) and the surface at a quantile of its height; and
+/// which of the two models of the force it carries:
+/// - pressed (held false): the normal force f0 + k (h - z_c) + d (-dz_c/dt) and kinetic friction
+///   against sliding, whose linear moment columns re-estimate the point (8 columns);
+/// - held (held true): the point rests on the surface, which pushes up with a normal force and
+///   holds it with a static friction force in any horizontal direction, all at the gate's point
+///   (3 columns). A controller pressing a hook onto a table through a tele-operator's reference
+///   holds it with whatever force its position error asks, in a direction within the friction
+///   cone: the pressed model read that as a force 15-100 m off the link (implausible), the held
+///   model as a push and a hold at the hook (seed 41 case 33, MuJoCo tele-operation).
 struct ContactPoint {
   Eigen::Vector3d point = Eigen::Vector3d::Zero();
   double quantile = 0;
-  /// As an Effect's profile_point (x, z, quantile), and back.
-  [[nodiscard]] std::vector<double> coordinates() const { return {point.x(), point.z(), quantile}; }
+  bool held = false;
+  /// As an Effect's profile_point (x, z, quantile, held), and back.
+  [[nodiscard]] std::vector<double> coordinates() const {
+    return {point.x(), point.z(), quantile, held ? 1.0 : 0.0};
+  }
   static ContactPoint of(const Effect& contact);
 };
 
@@ -40,7 +52,7 @@ class ContactRows {
   [[nodiscard]] double scale() const { return scale_; }
   /// A surface quantile within what a search may try: at least a few rows below the surface.
   [[nodiscard]] double clamped(double quantile) const;
-  /// The coarse grid of points and surfaces.
+  /// The coarse grid of points and surfaces, for both models of the force.
   [[nodiscard]] std::vector<ContactPoint> grid() const;
   /// The contact effect at a point and surface, conditioned into the analysis rows.
   [[nodiscard]] Effect effect(const ContactPoint& at) const;
@@ -50,6 +62,7 @@ class ContactRows {
   bool valid_ = false;
   double scale_ = 0;
   Eigen::Vector3d down_ = Eigen::Vector3d::Zero();
+  Eigen::Vector3d across_[2] = {Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()};  // horizontal
   Eigen::MatrixXd height_, lever_;  // S x 4 and S*n x 4: the basis per evaluation row
   std::vector<ContactGeometry::Frame> frames_;
 };
