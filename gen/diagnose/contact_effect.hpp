@@ -36,9 +36,7 @@ struct ContactPoint {
   double quantile = 0;
   bool held = false;
   /// As an Effect's profile_point (x, z, quantile, held), and back.
-  [[nodiscard]] std::vector<double> coordinates() const {
-    return {point.x(), point.z(), quantile, held ? 1.0 : 0.0};
-  }
+  [[nodiscard]] std::vector<double> coordinates() const { return {point.x(), point.z(), quantile, held ? 1.0 : 0.0}; }
   static ContactPoint of(const Effect& contact);
 };
 
