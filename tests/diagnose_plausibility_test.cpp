@@ -78,28 +78,17 @@ TEST(Plausibility, ALoadsPointIsOnItsLink) {
   EXPECT_FALSE(diagnose::plausible(negative, kraft(), gap()));
 }
 
-// A contact's friction is at most 1.5 times its normal force (beyond twice the error).
-TEST(Plausibility, AContactsFrictionIsAtMostOneAndAHalfTimesItsPush) {
-  EXPECT_TRUE(plausible("friction_coefficient", 0.6, 0.1));
-  EXPECT_TRUE(plausible("friction_coefficient", 2.0, 0.3)) << "within twice its error of 1.5";
-  EXPECT_FALSE(plausible("friction_coefficient", 2.5, 0.3));
-}
-
-// A held contact pushes (beyond twice its error) and holds within its friction cone: the hold's
-// size at most 1.5 pushes, beyond twice the error of the difference.
-TEST(Plausibility, AHeldContactPushesAndHoldsWithinItsFrictionCone) {
+// A held contact (its push alone, at the gate's point) pushes beyond twice its error.
+TEST(Plausibility, AHeldContactPushes) {
   diagnose::RankedEffect held;
-  held.parameters = {{"force", 0.3, 0.03}, {"hold_a", 0.24, 0.01}, {"hold_b", -0.18, 0.01}};  // a hold of 0.3
+  held.family = "contact";
+  held.parameters = {{"force", 0.3, 0.03}, {"point_x", 0.4, 0.0}, {"point_y", 0.0, 0.0}, {"point_z", 0.0, 0.0}};
   EXPECT_TRUE(diagnose::plausible(held, kraft(), gap()));
-  diagnose::RankedEffect no_push = held;
-  no_push.parameters[0] = {"force", 0.05, 0.03};
-  EXPECT_FALSE(diagnose::plausible(no_push, kraft(), gap())) << "a push within twice its error of zero";
-  diagnose::RankedEffect outside = held;
-  outside.parameters[1].value = 0.8;  // a hold of 0.82 on a push of 0.3: 0.37 beyond the cone
-  EXPECT_FALSE(diagnose::plausible(outside, kraft(), gap()));
-  diagnose::RankedEffect uncertain = outside;
-  uncertain.parameters[1].error = 0.3;  // ... by less than twice its error
-  EXPECT_TRUE(diagnose::plausible(uncertain, kraft(), gap()));
+  held.parameters[0] = {"force", 0.05, 0.03};
+  EXPECT_FALSE(diagnose::plausible(held, kraft(), gap())) << "a push within twice its error of zero";
+  diagnose::RankedEffect pressed = held;  // with moments, a pressed contact only may not pull
+  pressed.parameters.push_back({"moment_x", 0.02, 0.01});
+  EXPECT_TRUE(diagnose::plausible(pressed, kraft(), gap()));
 }
 
 }  // namespace

@@ -56,12 +56,6 @@ ContactRows::ContactRows(const Dataset& d, const pipeline::Derivation& derivatio
   }
   scale_ = ContactGeometry::scale(height_.col(0));
   down_ = geometry.down();
-  // Two horizontal directions: the base axis least along gravity, made perpendicular to it, and
-  // the one perpendicular to both.
-  Eigen::Index axis = 0;
-  down_.cwiseAbs().minCoeff(&axis);
-  across_[0] = (Eigen::Vector3d::Unit(axis) - down_.dot(Eigen::Vector3d::Unit(axis)) * down_).normalized();
-  across_[1] = down_.cross(across_[0]);
 }
 
 double ContactRows::clamped(double quantile) const {
@@ -96,22 +90,16 @@ Effect ContactRows::effect(const ContactPoint& at) const {
   e.profile_name = "surface_height";
   e.profile = h;
   e.profile_point = at.coordinates();
-  if (at.held) {
-    // Minus the torque of the upward push and of the two horizontal holds, all at c.
-    e.columns = Eigen::MatrixXd::Zero(samples * n, 3);
+  if (at.held) {  // minus the torque of the upward push at c
+    e.columns = Eigen::MatrixXd::Zero(samples * n, 1);
     for (Eigen::Index s = 0; s < samples; ++s) {
       if (z[s] >= h) continue;
-      const Eigen::MatrixXd jacobian = frames_[static_cast<std::size_t>(s)].point_jacobian(c);
       const auto rows = lever_.middleRows(s * n, n);
       e.columns.block(s * n, 0, n, 1) = rows.col(0) + rows.rightCols(3) * c;
-      e.columns.block(s * n, 1, n, 1) = -jacobian.transpose() * across_[0];
-      e.columns.block(s * n, 2, n, 1) = -jacobian.transpose() * across_[1];
     }
-    for (const char* name : {"force", "hold_a", "hold_b"}) {
-      e.parameters.emplace_back(name);
-      e.joint_of.push_back(-1);
-      e.reading.push_back(Reading::as_is);
-    }
+    e.parameters = {"force"};
+    e.joint_of = {-1};
+    e.reading = {Reading::as_is};
     e.columns = d.condition(e.columns);
     return e;
   }

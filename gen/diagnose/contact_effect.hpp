@@ -25,12 +25,12 @@ namespace dyncc::diagnose {
 /// which of the two models of the force it carries:
 /// - pressed (held false): the normal force f0 + k (h - z_c) + d (-dz_c/dt) and kinetic friction
 ///   against sliding, whose linear moment columns re-estimate the point (8 columns);
-/// - held (held true): the point rests on the surface, which pushes up with a normal force and
-///   holds it with a static friction force in any horizontal direction, all at the gate's point
-///   (3 columns). A controller pressing a hook onto a table through a tele-operator's reference
-///   holds it with whatever force its position error asks, in a direction within the friction
-///   cone: the pressed model read that as a force 15-100 m off the link (implausible), the held
-///   model as a push and a hold at the hook (seed 41 case 33, MuJoCo tele-operation).
+/// - held (held true): the point rests on the surface, which pushes it up, at the gate's point (1
+///   column). A controller holding a hook on a table through a tele-operator's reference pushes
+///   with whatever its position error asks, not as a spring: the pressed model read that as a
+///   force 15-100 m off the link (implausible), the held model as a push at the hook's searched
+///   point (seed 41 case 33, MuJoCo tele-operation). With static friction holds beside the push
+///   (two more columns) it also tied with a payload carried in the same task (seed 97 case 57).
 struct ContactPoint {
   Eigen::Vector3d point = Eigen::Vector3d::Zero();
   double quantile = 0;
@@ -60,7 +60,6 @@ class ContactRows {
   bool valid_ = false;
   double scale_ = 0;
   Eigen::Vector3d down_ = Eigen::Vector3d::Zero();
-  Eigen::Vector3d across_[2] = {Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()};  // horizontal
   Eigen::MatrixXd height_, lever_;  // S x 4 and S*n x 4: the basis per evaluation row
   std::vector<ContactGeometry::Frame> frames_;
 };

@@ -319,20 +319,11 @@ void add_friction_coefficient(RankedEffect& r) {
       {"friction_coefficient", mu, std::hypot(friction.error, mu * normal.error) / std::abs(normal.value)});
 }
 
-// A held contact's point is the gate's (the search's resolution, not a fit), and its friction
-// coefficient the horizontal hold over the push.
+// A held contact's point is the gate's (the search's resolution, not a fit).
 void add_held_point(RankedEffect& r, const ContactPoint& at) {
-  std::map<std::string, FittedParameter> p;
-  for (const FittedParameter& x : r.parameters) p[x.name] = x;
   for (int axis = 0; axis < 3; ++axis) {
     r.parameters.push_back({std::string("point_") + static_cast<char>('x' + axis), at.point[axis], 0.0});
   }
-  const FittedParameter &normal = p["force"], &a = p["hold_a"], &b = p["hold_b"];
-  if (normal.value == 0) return;
-  const double hold = std::hypot(a.value, b.value), mu = hold / normal.value;
-  const double hold_error = hold > 0 ? std::hypot(a.value * a.error, b.value * b.error) / hold : 0.0;
-  r.parameters.push_back(
-      {"friction_coefficient", mu, std::hypot(hold_error, mu * normal.error) / std::abs(normal.value)});
 }
 
 RankedEffect describe(const Candidate& c, const Eigen::VectorXd& before, Eigen::Index offset,

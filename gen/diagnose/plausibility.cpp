@@ -1,18 +1,14 @@
 #include "diagnose/plausibility.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
-#include <map>
 #include <string>
 
 namespace dyncc::diagnose {
 namespace {
 
 constexpr double kFarthestPoint = 2.0;  // m: a payload or contact point farther from its link is implausible
-// A contact's friction over its normal force, beyond which it is no friction (rubber on rubber
-// reaches about 1): a hook held on a table with a horizontal force 7.5 times its push is the hold
-// soaking up something else (seed 41 case 33 at a point 0.36 m along the forearm's joint axis).
-constexpr double kLargestFriction = 1.5;
 
 // The joint (0-based) of a per-joint parameter named prefix + number ("fc2", "stiffness3"), or -1.
 int joint_of_parameter(const std::string& name, const std::string& prefix) {
@@ -39,7 +35,6 @@ bool plausible_parameter(const FittedParameter& p, const pipeline::Derivation& d
   const double total = p.value + described(p.name, "fc", params.coulomb_of) +
                        described(p.name, "fv", params.viscous_of) + described(p.name, "ia", params.rotor_of);
   if (non_negative && total < -2.0 * p.error) return false;
-  if (p.name == "friction_coefficient" && p.value - 2.0 * p.error > kLargestFriction) return false;
   // A drive whose torque is off by more than a factor of two is a wrong description, not a gain.
   if (p.name.rfind("gain", 0) == 0 && (p.value < 0.5 || p.value > 2.0)) return false;
   // A transmission that gives way by more than twice kLargestDeflection RMS under its joint's
@@ -72,20 +67,13 @@ bool plausible(const RankedEffect& r, const pipeline::Derivation& derivation, co
   for (const FittedParameter& p : r.parameters) {
     if (!plausible_parameter(p, derivation, gap)) return false;
   }
-  // A held contact pushes, and holds within its friction cone: |hold| <= kLargestFriction push,
-  // not beyond twice the error of the difference. Holds with no push under them are a horizontal
-  // force of something else (a Stribeck friction of a tele-operated Kraft's elbow read as 2.7 N of
-  // hold on a push of 0.03 +- 0.016 N, seed 107 case 21).
-  std::map<std::string, FittedParameter> by_name;
-  for (const FittedParameter& p : r.parameters) by_name[p.name] = p;
-  if (by_name.count("hold_a") > 0) {
-    const FittedParameter &push = by_name["force"], &a = by_name["hold_a"], &b = by_name["hold_b"];
-    const double hold = std::hypot(a.value, b.value);
-    const double hold_error = hold > 0 ? std::hypot(a.value * a.error, b.value * b.error) / hold : 0.0;
-    const double beyond = hold - kLargestFriction * push.value;
-    if (push.value <= 2.0 * push.error || beyond > 2.0 * std::hypot(hold_error, kLargestFriction * push.error)) {
-      return false;
-    }
+  // A held contact (its push alone, no moments) pushes beyond twice its error: a push within
+  // it of zero is no contact.
+  const bool held =
+      r.family == "contact" && std::none_of(r.parameters.begin(), r.parameters.end(),
+                                            [](const FittedParameter& p) { return p.name.rfind("moment_", 0) == 0; });
+  for (const FittedParameter& p : r.parameters) {
+    if (held && p.name == "force" && p.value <= 2.0 * p.error) return false;
   }
   // A load or a contact is on the link, not metres away: a first moment with next to no mass (a
   // payload of 0.1 g at 46 m on a Kraft log whose forearm was read 0.05 rad off) is the columns
