@@ -297,17 +297,25 @@ TEST(DiagnoseCommand, TeleoperationStribeckScaleStaysTheStepsWhenNarrowingGainsN
   EXPECT_NEAR(fitted["fs1"], excess, 0.1 * excess);
 }
 
+// A table `depth` m above the lowest point of the hook in a run of dyncc excite, diagnosed; the
+// verdict must be the contact.
+nlohmann::json diagnosed_contact(const std::string& name, double depth, const std::string& run) {
+  const nlohmann::json d =
+      diagnose_excited(name,
+                       fmt::format(R"({{"effects": [{{"effect": "contact", "parameters": {{"depth": {}}}}}]}})", depth),
+                       run);
+  EXPECT_EQ(d["verdict"]["effect"], "contact") << d["verdict"].dump();
+  return d;
+}
+
 // The blind seed 107, case 3: a table 5.2 mm above the lowest point of the Kraft's hook, touched
 // in 0.2 % of the rows of the MuJoCo plant's Fourier log at 1 kHz (four touches, up to 105 N). The
 // hook sits 0.40 m along the forearm, beyond the contact grid's farthest point (0.26 m): gated on
 // the grid's points, whose lowest rows are not the touches, the contact explained 2.5 % and the
 // verdict was `unknown`. The local search from the grid's best points reaches the hook.
 TEST(DiagnoseCommand, BriefTouchesOfATableOffTheContactGridAreAContact) {
-  const nlohmann::json d =
-      diagnose_excited("mujoco_touch",
-                       R"({"effects": [{"effect": "contact", "parameters": {"depth": 0.005157602083914288}}]})",
-                       "--plant mujoco --trajectory fourier --rate 1000 --seed 107003");
-  EXPECT_EQ(d["verdict"]["effect"], "contact") << d["verdict"].dump();
+  const nlohmann::json d = diagnosed_contact("mujoco_touch", 0.005157602083914288,
+                                             "--plant mujoco --trajectory fourier --rate 1000 --seed 107003");
   ASSERT_FALSE(d["selected"].empty());
   EXPECT_GT(d["selected"][0]["shrink"].get<double>(), 0.3) << d["selected"][0].dump();
 }
@@ -320,11 +328,8 @@ TEST(DiagnoseCommand, BriefTouchesOfATableOffTheContactGridAreAContact) {
 // the verdict, its push determined with its rows at rest kept in the final fit (with holds beside
 // it and without those rows: -4.9 N +- 1e12).
 TEST(DiagnoseCommand, AHookHeldOnATableIsAHeldContact) {
-  const nlohmann::json d =
-      diagnose_excited("mujoco_held",
-                       R"({"effects": [{"effect": "contact", "parameters": {"depth": 0.002576444469301687}}]})",
-                       "--plant mujoco --trajectory teleop --rate 200 --seed 41033");
-  EXPECT_EQ(d["verdict"]["effect"], "contact") << d["verdict"].dump();
+  const nlohmann::json d = diagnosed_contact("mujoco_held", 0.002576444469301687,
+                                             "--plant mujoco --trajectory teleop --rate 200 --seed 41033");
   std::map<std::string, double> fitted = fitted_of(d);
   ASSERT_TRUE(fitted.count("force") && !fitted.count("moment_x")) << d["selected"].dump();
   double push_error = 0;

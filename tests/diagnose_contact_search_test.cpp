@@ -17,11 +17,7 @@
 namespace dyncc::test {
 namespace {
 
-const pipeline::Derivation& kraft() {
-  static const std::unique_ptr<pipeline::Derivation> d =
-      derive_file(std::filesystem::path(DYNCC_SOURCE_DIR) / "robots" / "kraft.yaml");
-  return *d;
-}
+const pipeline::Derivation& kraft() { return kraft_derivation(); }
 
 // A Kraft log at 1 kHz, its forearm swinging slowly, with one 30 ms dip of 10 mrad at 10 s (a
 // hook pressed into a table and bouncing off), positions on 0.1 mrad steps.

@@ -22,11 +22,7 @@ namespace {
 
 using diagnose::Injection;
 
-const pipeline::Derivation& kraft() {
-  static const std::unique_ptr<pipeline::Derivation> d =
-      derive_file(std::filesystem::path(DYNCC_SOURCE_DIR) / "robots" / "kraft.yaml");
-  return *d;
-}
+const pipeline::Derivation& kraft() { return kraft_derivation(); }
 
 struct Case {
   Injection injection;

@@ -12,11 +12,7 @@
 namespace dyncc::test {
 namespace {
 
-const pipeline::Derivation& kraft() {
-  static const std::unique_ptr<pipeline::Derivation> d =
-      derive_file(std::filesystem::path(DYNCC_SOURCE_DIR) / "robots" / "kraft.yaml");
-  return *d;
-}
+const pipeline::Derivation& kraft() { return kraft_derivation(); }
 
 // A log's gap as the rules read it: 1 N m of torque RMS and 1 mrad of position resolution on each
 // of the Kraft's three joints.

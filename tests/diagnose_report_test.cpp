@@ -34,10 +34,7 @@ namespace {
 
 using diagnose::Injection;
 
-const pipeline::Derivation& kraft() {
-  static const std::unique_ptr<pipeline::Derivation> d = derive_file(robots_dir() / "kraft.yaml");
-  return *d;
-}
+const pipeline::Derivation& kraft() { return kraft_derivation(); }
 
 std::filesystem::path temp_file(const std::string& name) { return temp_path(name + ".csv"); }
 

@@ -80,6 +80,12 @@ inline std::unique_ptr<pipeline::Derivation> derive_file(const std::filesystem::
   return nullptr;
 }
 
+/// The Kraft arm's description (robots/kraft.yaml), derived once per test program.
+inline const pipeline::Derivation& kraft_derivation() {
+  static const std::unique_ptr<pipeline::Derivation> d = derive_file(robots_dir() / "kraft.yaml");
+  return *d;
+}
+
 /// A random state from the tests' own generator (not dyncc's random_state): angles in
 /// [-pi, pi], rates, reference velocities and accelerations in [-2, 2].
 inline dyn::State random_state(Eigen::Index n, std::mt19937_64& rng) {
