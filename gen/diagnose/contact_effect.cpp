@@ -131,12 +131,6 @@ Effect ContactRows::effect(const ContactPoint& at) const {
   return e;
 }
 
-void add_contact_effects(const Dataset& d, const pipeline::Derivation& derivation, std::vector<Effect>& out) {
-  const ContactRows rows(d, derivation);
-  if (!rows.valid()) return;
-  for (const ContactPoint& at : rows.grid()) out.push_back(rows.effect(at));
-}
-
 std::vector<ContactPoint> search_contact(const ContactRows& rows, const ContactPoint& start, const ContactFit& fit,
                                          const ContactJudge& judge) {
   ContactPoint at = start, plausible = start;

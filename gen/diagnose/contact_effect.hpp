@@ -64,9 +64,6 @@ class ContactRows {
   std::vector<ContactGeometry::Frame> frames_;
 };
 
-/// The contact effects of the coarse grid (none when the robot has no payload link).
-void add_contact_effects(const Dataset& d, const pipeline::Derivation& derivation, std::vector<Effect>& out);
-
 /// How well a contact point explains the log, as the diagnosis judges it.
 struct ContactFit {
   bool plausible = false;

@@ -586,7 +586,7 @@ void coulomb_where_no_excess(Diagnosis& out, std::size_t k, const Eigen::VectorX
 // chose it): a scale picked before the viscous friction of its joint was fitted is bent to mimic
 // that friction (seed 53 case 9: fs2 0.449 for 0.350 beside a viscous 0.201). Where no excess is
 // left at the chosen scale, the Stribeck friction is a Coulomb friction (coulomb_where_no_excess). Not a contact's
-// surface: chosen again among its 180 points beside a payload, it moved the payload's mass by 5 %
+// surface: chosen again among its grid's points beside a payload, it moved the payload's mass by 5 %
 // (seed 23 case 54).
 void rechoose_points(Diagnosis& out, const std::deque<Effect>& effects, const Eigen::VectorXd& r0,
                      const Eigen::VectorXd& weight, Eigen::Index n) {
@@ -791,10 +791,8 @@ CrossValidation fit_together(const std::vector<Effect>& effects, const Eigen::Ve
   // +- 1e12).
   CrossValidation first = cross_validate(residual, all, n, weight, &fitted_on);
   Eigen::VectorXd kept = rows_without_static_friction(first.heldout, away, n);
-  at = 0;
   for (const Effect& e : effects) {
     if (e.family == "contact") keep_rows_where_acting(e.columns, n, kept);
-    at += e.columns.cols();
   }
   if (kept.minCoeff() == 1) return first;
   fitted_on.array().colwise() *= kept.array();
@@ -853,22 +851,21 @@ Candidate judged(const Effect& e, const StepState& s, std::deque<Effect>& narrow
   return c;
 }
 
+ContactFit contact_fit(const Candidate& c) { return {c.plausible, c.shrink}; }
+
 // The contact's point searched locally (contact_effect.hpp) at the first step, from the two best
 // distinct points of its grid for a pressed contact and the best for a held one, among those that
 // explain at least kAcceptShrink held out (a log without a touch is not searched: its best grid
 // point is a fit to noise). The points the searches reach join the effects, for this step
 // (`consider`) and the later ones.
 template <typename Consider>
-void search_contacts(const Dataset& d, const StepState& s, std::vector<std::pair<const Effect*, ContactFit>> grid,
-                     std::deque<Effect>& effects, std::deque<Effect>& narrowed_effects, Consider consider) {
+void search_contacts(const ContactRows& rows, const StepState& s,
+                     std::vector<std::pair<const Effect*, ContactFit>> grid, std::deque<Effect>& effects,
+                     std::deque<Effect>& narrowed_effects, Consider consider) {
   constexpr int kStarts[] = {2, 1};  // pressed, held
   std::sort(grid.begin(), grid.end(), [](const auto& a, const auto& b) { return a.second.shrink > b.second.shrink; });
   if (grid.empty() || grid.front().second.shrink < kAcceptShrink) return;
-  const ContactRows rows(d, s.derivation);
-  const ContactJudge judge = [&](const Effect& e) {
-    const Candidate c = judged(e, s, narrowed_effects);
-    return ContactFit{c.plausible, c.shrink};
-  };
+  const ContactJudge judge = [&](const Effect& e) { return contact_fit(judged(e, s, narrowed_effects)); };
   std::vector<Eigen::Vector3d> started[2];
   for (const auto& [effect, fit] : grid) {
     const ContactPoint start = ContactPoint::of(*effect);
@@ -886,7 +883,7 @@ void search_contacts(const Dataset& d, const StepState& s, std::vector<std::pair
 // Every remaining candidate on top of what is accepted (its parameters already fitted left out),
 // and the best profile point per effect; at the first step the contact's point is also searched
 // (search_contacts).
-std::map<std::string, Candidate> best_candidates(const Dataset& d, const StepState& s, bool first_step,
+std::map<std::string, Candidate> best_candidates(const ContactRows& contacts, const StepState& s, bool first_step,
                                                  const std::vector<std::string>& taken,
                                                  const std::vector<std::string>& fitted, std::deque<Effect>& effects,
                                                  std::deque<Effect>& narrowed_effects) {
@@ -907,10 +904,10 @@ std::map<std::string, Candidate> best_candidates(const Dataset& d, const StepSta
       if (use->columns.cols() == 0) continue;
     }
     Candidate c = judged(*use, s, narrowed_effects);
-    if (first_step && use->family == "contact") contact_grid.emplace_back(use, ContactFit{c.plausible, c.shrink});
+    if (first_step && use->family == "contact") contact_grid.emplace_back(use, contact_fit(c));
     consider(std::move(c));
   }
-  if (first_step) search_contacts(d, s, contact_grid, effects, narrowed_effects, consider);
+  if (first_step) search_contacts(contacts, s, contact_grid, effects, narrowed_effects, consider);
   return best;
 }
 
@@ -935,6 +932,10 @@ Diagnosis diagnose(const Dataset& d, const pipeline::Derivation& derivation) {
   out.weight = weight;
   std::deque<Effect> effects;  // stable addresses: candidates point at their effect; a search adds to it
   for (Effect& e : candidate_effects(d, derivation)) effects.push_back(std::move(e));
+  const ContactRows contacts(d, derivation);  // the contact's grid here, its search at the first step
+  if (contacts.valid()) {
+    for (const ContactPoint& at : contacts.grid()) effects.push_back(contacts.effect(at));
+  }
   out.away = away_from_zero_velocity(d);
   const Eigen::VectorXd& away = out.away;
 
@@ -948,7 +949,7 @@ Diagnosis diagnose(const Dataset& d, const pipeline::Derivation& derivation) {
     const Eigen::VectorXd before = joint_rms(baseline, n);
     const StepState step_state{accepted, r0, baseline, weight, away, before, out.gap, derivation};
     std::map<std::string, Candidate> best =
-        best_candidates(d, step_state, step == 0, taken, fitted, effects, narrowed_effects);
+        best_candidates(contacts, step_state, step == 0, taken, fitted, effects, narrowed_effects);
     if (best.empty()) break;
     std::vector<const Candidate*> order;
     order.reserve(best.size());

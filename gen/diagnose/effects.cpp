@@ -6,7 +6,6 @@
 #include <cmath>
 #include <numbers>
 
-#include "diagnose/contact_effect.hpp"
 #include "diagnose/payload.hpp"
 #include "diagnose/shifted_positions.hpp"
 #include "diagnose/signals.hpp"
@@ -159,7 +158,6 @@ std::vector<Effect> candidate_effects(const Dataset& d, const pipeline::Derivati
     return turning[j] >= kBacklashTurnOver ? 0.5 * std::tanh(carried(s, j) / kTorqueSignScale) : 0.0;
   });
   add_payload_effects(d, derivation, out);  // conditioned as they are made (a load's point is fitted)
-  add_contact_effects(d, derivation, out);  // conditioned as they are made (many profile points)
   return out;
 }
 

@@ -34,7 +34,7 @@ struct Effect {
   double profile = 0;
   std::vector<ShapeValue> shape;
   // A profile of more than one dimension: its coordinates, where a local search may start from (a
-  // contact: its point's x and z in the link frame, m, and its surface's quantile).
+  // contact: ContactPoint::coordinates).
   std::vector<double> profile_point;
   std::string family;  // effects of one family are alternatives of each other
 };
@@ -55,7 +55,8 @@ int payload_link(const pipeline::Derivation& derivation);
 
 /// Every candidate for the data (friction, payload, delay, gain, offset, compliance, backlash,
 /// rotor inertia, and the description's own inertial parameters), built on the evaluation rows
-/// and conditioned into the analysis rows.
+/// and conditioned into the analysis rows. The contact's are ContactRows' (contact_effect.hpp):
+/// the diagnosis keeps its geometry for the search it runs from them.
 std::vector<Effect> candidate_effects(const Dataset& data, const pipeline::Derivation& derivation);
 
 }  // namespace dyncc::diagnose

@@ -72,8 +72,9 @@ bool plausible(const RankedEffect& r, const pipeline::Derivation& derivation, co
   const bool held =
       r.family == "contact" && std::none_of(r.parameters.begin(), r.parameters.end(),
                                             [](const FittedParameter& p) { return p.name.rfind("moment_", 0) == 0; });
-  for (const FittedParameter& p : r.parameters) {
-    if (held && p.name == "force" && p.value <= 2.0 * p.error) return false;
+  if (held && std::any_of(r.parameters.begin(), r.parameters.end(),
+                          [](const FittedParameter& p) { return p.name == "force" && p.value <= 2.0 * p.error; })) {
+    return false;
   }
   // A load or a contact is on the link, not metres away: a first moment with next to no mass (a
   // payload of 0.1 g at 46 m on a Kraft log whose forearm was read 0.05 rad off) is the columns
