@@ -5,6 +5,8 @@
 
 #include <cmath>
 #include <fstream>
+#include <numbers>
+#include <random>
 
 #include "cli_support.hpp"
 #include "diagnose/joint_log.hpp"
@@ -96,6 +98,37 @@ TEST(DiagnoseSignals, ZeroPhaseLowpass) {
   const Eigen::VectorXd y = diagnose::zero_phase_lowpass(x, 5.0, rate);
   EXPECT_LT((y - x).segment(200, 1600).cwiseAbs().maxCoeff(), 1e-3);
   EXPECT_LT((diagnose::zero_phase_lowpass(ramp, 5.0, rate) - ramp).cwiseAbs().maxCoeff(), 1e-6);
+}
+
+// Columns filtered side by side (Dataset::condition) are each what the filter makes of it alone,
+// to the last bit, and the filter is a Butterworth one run twice: a sine at the cut-off comes
+// through at half its amplitude (|H|^2 = 1/2 with the prewarped cut-off), one at a tenth of it
+// whole, one at five times it at 1 / (1 + r^4), r the ratio of the prewarped frequencies
+// (tan(pi f / rate) over that of the cut-off: 5.03 here; 5 in continuous time).
+TEST(DiagnoseSignals, ColumnsFilteredTogetherAreEachFilteredAlone) {
+  const double rate = 500, cutoff = 4;
+  const Eigen::Index samples = 5000;
+  diagnose::RowMatrix x(samples, 4);
+  std::mt19937 random(7);
+  std::normal_distribution<double> noise(0.0, 0.1);
+  for (Eigen::Index i = 0; i < samples; ++i) {
+    const double t = static_cast<double>(i) / rate;
+    x(i, 0) = std::sin(2 * std::numbers::pi * cutoff * t);
+    x(i, 1) = std::sin(2 * std::numbers::pi * 0.1 * cutoff * t);
+    x(i, 2) = std::sin(2 * std::numbers::pi * 5 * cutoff * t);
+    x(i, 3) = (i > samples / 2 ? 1.0 : 0.0) + noise(random);  // a step in noise
+  }
+  diagnose::RowMatrix together = x;
+  diagnose::zero_phase_lowpass_rows(together, cutoff, rate);
+  for (Eigen::Index c = 0; c < x.cols(); ++c) {
+    const Eigen::VectorXd alone = diagnose::zero_phase_lowpass(x.col(c), cutoff, rate);
+    for (Eigen::Index i = 0; i < samples; ++i) ASSERT_EQ(together(i, c), alone[i]) << "column " << c << " row " << i;
+  }
+  const auto amplitude = [&](Eigen::Index c) { return together.col(c).segment(1000, 3000).cwiseAbs().maxCoeff(); };
+  EXPECT_NEAR(amplitude(0), 0.5, 0.005);
+  EXPECT_NEAR(amplitude(1), 1.0, 0.005);
+  const double r = std::tan(std::numbers::pi * 5 * cutoff / rate) / std::tan(std::numbers::pi * cutoff / rate);
+  EXPECT_NEAR(amplitude(2), 1.0 / (1.0 + std::pow(r, 4)), 0.02 / (1.0 + std::pow(r, 4)));  // 25 samples a period
 }
 
 }  // namespace

@@ -121,13 +121,17 @@ Eigen::MatrixXd Dataset::condition(const Eigen::MatrixXd& stacked) const {
   Eigen::Index row = 0;
   for (const Segment& g : segments) {
     const Eigen::Index length = g.end - g.begin;
-    for (Eigen::Index c = 0; c < stacked.cols(); ++c) {
-      for (Eigen::Index i = 0; i < n; ++i) {
-        Eigen::VectorXd x(length);
-        for (Eigen::Index s = 0; s < length; ++s) x[s] = stacked((g.begin + s) * n + i, c);
-        const Eigen::VectorXd y = zero_phase_lowpass(x, cutoff, g.rate);
-        for (std::size_t k = 0; k < g.keep.size(); ++k)
-          out((row + static_cast<Eigen::Index>(k)) * n + i, c) = y[g.keep[k]];
+    RowMatrix x(length, stacked.cols() * n);  // column c * n + i: joint i of column c
+    for (Eigen::Index s = 0; s < length; ++s) {
+      for (Eigen::Index c = 0; c < stacked.cols(); ++c) {
+        for (Eigen::Index i = 0; i < n; ++i) x(s, c * n + i) = stacked((g.begin + s) * n + i, c);
+      }
+    }
+    zero_phase_lowpass_rows(x, cutoff, g.rate);
+    for (std::size_t k = 0; k < g.keep.size(); ++k) {
+      for (Eigen::Index c = 0; c < stacked.cols(); ++c) {
+        for (Eigen::Index i = 0; i < n; ++i)
+          out((row + static_cast<Eigen::Index>(k)) * n + i, c) = x(g.keep[k], c * n + i);
       }
     }
     row += static_cast<Eigen::Index>(g.keep.size());

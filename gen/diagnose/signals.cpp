@@ -19,18 +19,48 @@ Biquad butterworth(double cutoff, double rate) {
           (1 - std::numbers::sqrt2 * k + k * k) * norm};
 }
 
-// One pass, started in the steady state of the first sample (no start-up transient for a constant).
-void run(const Biquad& f, std::vector<double>& x) {
-  if (x.empty()) return;
-  const double x0 = x.front();
-  double x1 = x0, x2 = x0, y1 = x0, y2 = x0;
-  for (double& v : x) {
-    const double y = f.b0 * v + f.b1 * x1 + f.b2 * x2 - f.a1 * y1 - f.a2 * y2;
-    x2 = x1;
-    x1 = v;
-    y2 = y1;
-    y1 = y;
-    v = y;
+// The rows of a signal padded by odd reflection at both ends, the padding held apart: the
+// signal's own rows are filtered where they are (a log's contact candidates are a few hundred
+// columns of 10^4-10^5 rows: a padded copy of them cost more than the filter).
+class PaddedRows {
+ public:
+  PaddedRows(RowMatrix& x, Eigen::Index pad) : x_(x), pad_(pad), head_(pad, x.cols()), tail_(pad, x.cols()) {
+    const Eigen::Index n = x.rows();
+    for (Eigen::Index i = pad; i >= 1; --i) head_.row(pad - i) = 2 * x.row(0) - x.row(i);
+    for (Eigen::Index i = 1; i <= pad; ++i) tail_.row(i - 1) = 2 * x.row(n - 1) - x.row(n - 1 - i);
+  }
+  [[nodiscard]] Eigen::Index rows() const { return x_.rows() + 2 * pad_; }
+  [[nodiscard]] double* row(Eigen::Index t) {
+    if (t < pad_) return head_.row(t).data();
+    if (t < pad_ + x_.rows()) return x_.row(t - pad_).data();
+    return tail_.row(t - pad_ - x_.rows()).data();
+  }
+
+ private:
+  RowMatrix& x_;
+  Eigen::Index pad_;
+  RowMatrix head_, tail_;
+};
+
+// One pass over the rows (forward, or backward from the last row), each column a signal, started
+// in the steady state of its first sample (no start-up transient for a constant). The columns'
+// recurrences run side by side: one alone waits on its previous output at every sample.
+void run(const Biquad& f, PaddedRows& x, Eigen::Index columns, bool backward) {
+  const Eigen::Index rows = x.rows();
+  const Eigen::Index first = backward ? rows - 1 : 0, step = backward ? -1 : 1;
+  const auto m = static_cast<std::size_t>(columns);
+  std::vector<double> x1(x.row(first), x.row(first) + m);
+  std::vector<double> x2 = x1, y1 = x1, y2 = x1;
+  for (Eigen::Index k = 0; k < rows; ++k) {
+    double* v = x.row(first + step * k);
+    for (std::size_t c = 0; c < m; ++c) {
+      const double y = f.b0 * v[c] + f.b1 * x1[c] + f.b2 * x2[c] - f.a1 * y1[c] - f.a2 * y2[c];
+      x2[c] = x1[c];
+      x1[c] = v[c];
+      y2[c] = y1[c];
+      y1[c] = y;
+      v[c] = y;
+    }
   }
 }
 
@@ -73,23 +103,20 @@ double quantum(const Eigen::VectorXd& x) {
 
 }  // namespace
 
-Eigen::VectorXd zero_phase_lowpass(const Eigen::VectorXd& x, double cutoff, double rate) {
-  const Eigen::Index n = x.size();
-  if (n < 3) return x;
+void zero_phase_lowpass_rows(RowMatrix& x, double cutoff, double rate) {
+  const Eigen::Index n = x.rows();
+  if (n < 3 || x.cols() == 0) return;
   const Biquad f = butterworth(cutoff, rate);
   const Eigen::Index pad = std::min<Eigen::Index>(n - 1, static_cast<Eigen::Index>(3.0 * rate / cutoff) + 1);
-  std::vector<double> y;
-  y.reserve(static_cast<std::size_t>(n + 2 * pad));
-  for (Eigen::Index i = pad; i >= 1; --i) y.push_back(2 * x[0] - x[i]);
-  for (Eigen::Index i = 0; i < n; ++i) y.push_back(x[i]);
-  for (Eigen::Index i = 1; i <= pad; ++i) y.push_back(2 * x[n - 1] - x[n - 1 - i]);
-  run(f, y);
-  std::reverse(y.begin(), y.end());
-  run(f, y);
-  std::reverse(y.begin(), y.end());
-  Eigen::VectorXd out(n);
-  for (Eigen::Index i = 0; i < n; ++i) out[i] = y[static_cast<std::size_t>(i + pad)];
-  return out;
+  PaddedRows padded(x, pad);
+  run(f, padded, x.cols(), false);
+  run(f, padded, x.cols(), true);
+}
+
+Eigen::VectorXd zero_phase_lowpass(const Eigen::VectorXd& x, double cutoff, double rate) {
+  RowMatrix y = x;
+  zero_phase_lowpass_rows(y, cutoff, rate);
+  return y.col(0);
 }
 
 Eigen::VectorXd derivative(const Eigen::VectorXd& x, double dt) {
