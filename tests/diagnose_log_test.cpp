@@ -9,6 +9,7 @@
 #include <random>
 
 #include "cli_support.hpp"
+#include "diagnose/column_filter.hpp"
 #include "diagnose/joint_log.hpp"
 #include "diagnose/signals.hpp"
 

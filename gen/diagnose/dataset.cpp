@@ -7,6 +7,8 @@
 #include <numbers>
 #include <random>
 
+#include "diagnose/column_filter.hpp"
+
 namespace dyncc::diagnose {
 namespace {
 

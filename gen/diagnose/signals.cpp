@@ -4,6 +4,8 @@
 #include <cmath>
 #include <numbers>
 
+#include "diagnose/column_filter.hpp"
+
 namespace dyncc::diagnose {
 namespace {
 

@@ -14,11 +14,6 @@ namespace dyncc::diagnose {
 /// order. `cutoff` in Hz, `rate` the sample rate in Hz. Edges padded by odd reflection so a
 /// ramp passes through without a transient.
 Eigen::VectorXd zero_phase_lowpass(const Eigen::VectorXd& x, double cutoff, double rate);
-using RowMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
-/// zero_phase_lowpass of every column of x in place (the same numbers), the columns filtered side
-/// by side: faster than one at a time (Dataset::condition filters some 400 columns for the
-/// contact's candidates of one log).
-void zero_phase_lowpass_rows(RowMatrix& x, double cutoff, double rate);
 
 /// Central differences (one-sided at the ends) on a uniform grid.
 Eigen::VectorXd derivative(const Eigen::VectorXd& x, double dt);
