@@ -32,6 +32,7 @@ class PaddedRows {
     for (Eigen::Index i = 1; i <= pad; ++i) tail_.row(i - 1) = 2 * x.row(n - 1) - x.row(n - 1 - i);
   }
   [[nodiscard]] Eigen::Index rows() const { return x_.rows() + 2 * pad_; }
+  [[nodiscard]] Eigen::Index cols() const { return x_.cols(); }
   [[nodiscard]] double* row(Eigen::Index t) {
     if (t < pad_) return head_.row(t).data();
     if (t < pad_ + x_.rows()) return x_.row(t - pad_).data();
@@ -47,10 +48,10 @@ class PaddedRows {
 // One pass over the rows (forward, or backward from the last row), each column a signal, started
 // in the steady state of its first sample (no start-up transient for a constant). The columns'
 // recurrences run side by side: one alone waits on its previous output at every sample.
-void run(const Biquad& f, PaddedRows& x, Eigen::Index columns, bool backward) {
+void run(const Biquad& f, PaddedRows& x, bool backward) {
   const Eigen::Index rows = x.rows();
   const Eigen::Index first = backward ? rows - 1 : 0, step = backward ? -1 : 1;
-  const auto m = static_cast<std::size_t>(columns);
+  const auto m = static_cast<std::size_t>(x.cols());
   std::vector<double> x1(x.row(first), x.row(first) + m);
   std::vector<double> x2 = x1, y1 = x1, y2 = x1;
   for (Eigen::Index k = 0; k < rows; ++k) {
@@ -111,8 +112,8 @@ void zero_phase_lowpass_rows(RowMatrix& x, double cutoff, double rate) {
   const Biquad f = butterworth(cutoff, rate);
   const Eigen::Index pad = std::min<Eigen::Index>(n - 1, static_cast<Eigen::Index>(3.0 * rate / cutoff) + 1);
   PaddedRows padded(x, pad);
-  run(f, padded, x.cols(), false);
-  run(f, padded, x.cols(), true);
+  run(f, padded, false);
+  run(f, padded, true);
 }
 
 Eigen::VectorXd zero_phase_lowpass(const Eigen::VectorXd& x, double cutoff, double rate) {
