@@ -184,6 +184,19 @@ TEST(BlindBenchCase, PumaGainIsNotLedByACoulombFrictionWhoseJointsTheGainItselfE
               {{"gain6", gain.size, 0.1 * (gain.size - 1.0)}, {"fv5", viscous.size, 0.1 * viscous.size}});
 }
 
+// Case 34 of the blind seed 109 (PUMA 560, 200 Hz): a torque gain of joint 1 (20 % of the torque)
+// beside a viscous friction of joint 5. Joint 1's torque is mostly friction, so narrowed to joint 1
+// the gain (85.1 %) and a Coulomb friction of joint 1 (84.2 %) were alike and the Coulomb friction
+// was accepted first; the gain came in at the third step and explained all the Coulomb friction
+// had, which was dropped, and the verdict went to the viscous friction, accepted second. The
+// effect that took over a dropped one's joints takes its place in the order.
+TEST(BlindBenchCase, PumaGainTakesThePlaceOfTheCoulombFrictionItTookOver) {
+  const Injection gain{.effect = "torque_gain", .joint = 0, .size = 1.22};
+  const Injection viscous{.effect = "viscous_friction", .joint = 4, .size = 0.2556362415623103};
+  expect_case(diagnosed("puma560", {gain, viscous}, 200, 109U * 1000U + 34U), "torque_gain", {1},
+              {{"gain1", gain.size, 0.1 * (gain.size - 1.0)}, {"fv5", viscous.size, 0.1 * viscous.size}});
+}
+
 // Case 9 of the blind seed 53 (Kraft, 81 Hz): a Stribeck excess of joint 2 (20 % of the torque)
 // and a viscous friction of the same joint. The Stribeck scale was chosen before the viscous
 // friction was fitted and bent to mimic it: fs2 0.449 for 0.350, fv2 0.109 for 0.201. Each

@@ -1,29 +1,21 @@
 #include "diagnose/crossval.hpp"
 
 #include <cmath>
+#include <vector>
 
 namespace dyncc::diagnose {
 namespace {
 
 constexpr double kRidge = 1e-9;  // relative to the scaled normal matrix's unit diagonal
 
-// Columns scaled by their norms over all rows (`scale`), not over the training rows: a column that
-// is nearly zero where a fold trains (a load carried only in the held-out stretch) is then held
-// near zero by the ridge instead of being blown up to unit size and predicting nonsense.
-Eigen::VectorXd column_scale(const Eigen::MatrixXd& a) {
-  Eigen::VectorXd scale(a.cols());
-  for (Eigen::Index c = 0; c < a.cols(); ++c) {
-    const double norm = a.col(c).norm();
-    scale[c] = norm > 0 ? 1.0 / norm : 0.0;
-  }
-  return scale;
-}
-
-Eigen::VectorXd solve(const Eigen::MatrixXd& a, const Eigen::VectorXd& b, const Eigen::VectorXd& scale) {
-  const Eigen::MatrixXd as = a * scale.asDiagonal();
-  Eigen::MatrixXd normal = as.transpose() * as;
-  normal.diagonal().array() += kRidge;
-  const Eigen::VectorXd x = normal.ldlt().solve(as.transpose() * b);
+// A least-squares fit from its normal equations, the columns scaled by `scale` (1 / their norms
+// over all rows, not over the training rows: a column that is nearly zero where a fold trains, a
+// load carried only in the held-out stretch, is then held near zero by the ridge instead of being
+// blown up to unit size and predicting nonsense).
+Eigen::VectorXd solve(const Eigen::MatrixXd& normal, const Eigen::VectorXd& moment, const Eigen::VectorXd& scale) {
+  Eigen::MatrixXd scaled = scale.asDiagonal() * normal * scale.asDiagonal();
+  scaled.diagonal().array() += kRidge;
+  const Eigen::VectorXd x = scaled.ldlt().solve(scale.asDiagonal() * moment);
   return scale.asDiagonal() * x;
 }
 
@@ -42,30 +34,40 @@ Eigen::VectorXd joint_rms(const Eigen::VectorXd& stacked, Eigen::Index joints, E
 CrossValidation cross_validate(const Eigen::VectorXd& r, const Eigen::MatrixXd& E, Eigen::Index joints,
                                const Eigen::VectorXd& weight, const Eigen::MatrixXd* fitted_on) {
   const Eigen::Index samples = r.size() / joints, k = E.cols();
+  const Eigen::MatrixXd& F = fitted_on != nullptr ? *fitted_on : E;
   CrossValidation cv;
   cv.heldout = r;
   cv.theta_folds.resize(k, kFolds);
-  Eigen::VectorXd w(r.size());
-  for (Eigen::Index s = 0; s < samples; ++s) w.segment(s * joints, joints) = weight;
-  const Eigen::MatrixXd we = w.asDiagonal() * (fitted_on != nullptr ? *fitted_on : E);
-  const Eigen::VectorXd wr = w.asDiagonal() * r;
-  const Eigen::VectorXd scale = column_scale(we);
+  // One pass over the rows: each block's weighted normal matrix and moment. A fold trains on the
+  // sums less its own block's (the rows are read once, not copied and multiplied K + 1 times).
+  std::vector<Eigen::MatrixXd> normal(kFolds);
+  std::vector<Eigen::VectorXd> moment(kFolds);
+  Eigen::MatrixXd all_normal = Eigen::MatrixXd::Zero(k, k);
+  Eigen::VectorXd all_moment = Eigen::VectorXd::Zero(k);
   for (int f = 0; f < kFolds; ++f) {
     const Eigen::Index begin = fold_begin(samples, f), end = fold_begin(samples, f + 1);
     cv.fold_end.push_back(end);
-    const Eigen::Index train = samples - (end - begin);
-    Eigen::MatrixXd a(train * joints, k);
-    Eigen::VectorXd b(train * joints);
-    a.topRows(begin * joints) = we.topRows(begin * joints);
-    b.head(begin * joints) = wr.head(begin * joints);
-    a.bottomRows((samples - end) * joints) = we.bottomRows((samples - end) * joints);
-    b.tail((samples - end) * joints) = wr.tail((samples - end) * joints);
-    const Eigen::VectorXd theta = solve(a, b, scale);
+    Eigen::VectorXd w(((end - begin) * joints));
+    for (Eigen::Index s = begin; s < end; ++s) w.segment((s - begin) * joints, joints) = weight;
+    const Eigen::MatrixXd block = w.asDiagonal() * F.middleRows(begin * joints, (end - begin) * joints);
+    normal[f].noalias() = block.transpose() * block;
+    moment[f].noalias() = block.transpose() * w.cwiseProduct(r.segment(begin * joints, (end - begin) * joints));
+    all_normal += normal[f];
+    all_moment += moment[f];
+  }
+  Eigen::VectorXd scale(k);
+  for (Eigen::Index c = 0; c < k; ++c) {
+    const double norm_squared = all_normal(c, c);
+    scale[c] = norm_squared > 0 ? 1.0 / std::sqrt(norm_squared) : 0.0;
+  }
+  for (int f = 0; f < kFolds; ++f) {
+    const Eigen::Index begin = fold_begin(samples, f), end = fold_begin(samples, f + 1);
+    const Eigen::VectorXd theta = solve(all_normal - normal[f], all_moment - moment[f], scale);
     cv.theta_folds.col(f) = theta;
     cv.heldout.segment(begin * joints, (end - begin) * joints) -=
         E.middleRows(begin * joints, (end - begin) * joints) * theta;
   }
-  cv.theta = solve(we, wr, scale);
+  cv.theta = solve(all_normal, all_moment, scale);
   const Eigen::VectorXd mean = cv.theta_folds.rowwise().mean();
   cv.theta_error =
       ((cv.theta_folds.colwise() - mean).array().square().rowwise().sum() * (static_cast<double>(kFolds - 1) / kFolds))
