@@ -47,11 +47,15 @@ CrossValidation cross_validate(const Eigen::VectorXd& r, const Eigen::MatrixXd& 
   for (int f = 0; f < kFolds; ++f) {
     const Eigen::Index begin = fold_begin(samples, f), end = fold_begin(samples, f + 1);
     cv.fold_end.push_back(end);
-    Eigen::VectorXd w(((end - begin) * joints));
-    for (Eigen::Index s = begin; s < end; ++s) w.segment((s - begin) * joints, joints) = weight;
-    const Eigen::MatrixXd block = w.asDiagonal() * F.middleRows(begin * joints, (end - begin) * joints);
+    const Eigen::Index rows = (end - begin) * joints;
+    Eigen::MatrixXd block = F.middleRows(begin * joints, rows);  // row s * joints + j weighted by weight[j]
+    Eigen::VectorXd target = r.segment(begin * joints, rows);
+    for (Eigen::Index i = 0; i < rows; ++i) {
+      block.row(i) *= weight[i % joints];
+      target[i] *= weight[i % joints];
+    }
     normal[f].noalias() = block.transpose() * block;
-    moment[f].noalias() = block.transpose() * w.cwiseProduct(r.segment(begin * joints, (end - begin) * joints));
+    moment[f].noalias() = block.transpose() * target;
     all_normal += normal[f];
     all_moment += moment[f];
   }
