@@ -47,15 +47,19 @@ CrossValidation cross_validate(const Eigen::VectorXd& r, const Eigen::MatrixXd& 
   for (int f = 0; f < kFolds; ++f) {
     const Eigen::Index begin = fold_begin(samples, f), end = fold_begin(samples, f + 1);
     cv.fold_end.push_back(end);
+    normal[f] = Eigen::MatrixXd::Zero(k, k);
+    moment[f] = Eigen::VectorXd::Zero(k);
     const Eigen::Index rows = (end - begin) * joints;
-    Eigen::MatrixXd block = F.middleRows(begin * joints, rows);  // row s * joints + j weighted by weight[j]
-    Eigen::VectorXd target = r.segment(begin * joints, rows);
-    for (Eigen::Index i = 0; i < rows; ++i) {
-      block.row(i) *= weight[i % joints];
-      target[i] *= weight[i % joints];
+    if (rows > 0) {  // (a log shorter than the folds leaves a block empty)
+      Eigen::MatrixXd block = F.middleRows(begin * joints, rows);  // row s * joints + j weighted by weight[j]
+      Eigen::VectorXd target = r.segment(begin * joints, rows);
+      for (Eigen::Index i = 0; i < rows; ++i) {
+        block.row(i) *= weight[i % joints];
+        target[i] *= weight[i % joints];
+      }
+      normal[f] = block.transpose() * block;
+      moment[f] = block.transpose() * target;
     }
-    normal[f].noalias() = block.transpose() * block;
-    moment[f].noalias() = block.transpose() * target;
     all_normal += normal[f];
     all_moment += moment[f];
   }
