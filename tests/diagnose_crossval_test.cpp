@@ -55,22 +55,28 @@ void expect_near_relative(const Eigen::VectorXd& got, const Eigen::VectorXd& wan
   }
 }
 
-TEST(DiagnoseCrossValidation, EachFoldIsTheLeastSquaresFitOnTheOtherFolds) {
-  const Problem p = random_problem();
-  const diagnose::CrossValidation cv = diagnose::cross_validate(p.r, p.E, p.joints, p.weight);
+// Each fold's parameters are the QR fit on `fitted_on`'s other folds' rows, and its held-out
+// residual is what those parameters leave on its own rows, predicted with E.
+void expect_folds_fitted_outside(const Problem& p, const Eigen::MatrixXd& fitted_on,
+                                 const diagnose::CrossValidation& cv) {
   ASSERT_EQ(cv.fold_end.size(), static_cast<std::size_t>(diagnose::kFolds));
   Eigen::Index begin = 0;
   for (int f = 0; f < diagnose::kFolds; ++f) {
     const Eigen::Index end = cv.fold_end[static_cast<std::size_t>(f)];
     EXPECT_EQ(end, diagnose::fold_begin(p.samples, f + 1));
-    const Eigen::VectorXd theta = fit_outside(p, p.E, begin, end);
+    const Eigen::VectorXd theta = fit_outside(p, fitted_on, begin, end);
     expect_near_relative(cv.theta_folds.col(f), theta);
-    // The held-out residual of the fold's rows is what that fit leaves there.
     const Eigen::Index rows = (end - begin) * p.joints;
     const Eigen::VectorXd left = p.r.segment(begin * p.joints, rows) - p.E.middleRows(begin * p.joints, rows) * theta;
     EXPECT_LT((cv.heldout.segment(begin * p.joints, rows) - left).norm(), 1e-9 * left.norm());
     begin = end;
   }
+}
+
+TEST(DiagnoseCrossValidation, EachFoldIsTheLeastSquaresFitOnTheOtherFolds) {
+  const Problem p = random_problem();
+  const diagnose::CrossValidation cv = diagnose::cross_validate(p.r, p.E, p.joints, p.weight);
+  expect_folds_fitted_outside(p, p.E, cv);
   expect_near_relative(cv.theta, fit_outside(p, p.E, 0, 0));
   // The jackknife error from the folds' spread.
   const Eigen::VectorXd mean = cv.theta_folds.rowwise().mean();
@@ -85,16 +91,7 @@ TEST(DiagnoseCrossValidation, EachFoldIsTheLeastSquaresFitOnTheOtherFolds) {
 TEST(DiagnoseCrossValidation, FitsOnOneMatrixAndPredictsWithTheOther) {
   const Problem p = random_problem();
   const diagnose::CrossValidation cv = diagnose::cross_validate(p.r, p.E, p.joints, p.weight, &p.F);
-  Eigen::Index begin = 0;
-  for (int f = 0; f < diagnose::kFolds; ++f) {
-    const Eigen::Index end = cv.fold_end[static_cast<std::size_t>(f)];
-    const Eigen::VectorXd theta = fit_outside(p, p.F, begin, end);
-    expect_near_relative(cv.theta_folds.col(f), theta);
-    const Eigen::Index rows = (end - begin) * p.joints;
-    const Eigen::VectorXd left = p.r.segment(begin * p.joints, rows) - p.E.middleRows(begin * p.joints, rows) * theta;
-    EXPECT_LT((cv.heldout.segment(begin * p.joints, rows) - left).norm(), 1e-9 * left.norm());
-    begin = end;
-  }
+  expect_folds_fitted_outside(p, p.F, cv);
 }
 
 }  // namespace
