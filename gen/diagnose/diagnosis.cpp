@@ -707,6 +707,38 @@ bool explained_by_the_others(const std::vector<Effect>& effects, std::size_t k, 
   return shrink < kAcceptShrink || shrink - half_interval(folds) <= 0.0;
 }
 
+// The accepted effects where `gone`, dropped, each one's place in the order to its successor.
+void drop_gone(Diagnosis& out, std::vector<bool>& gone) {
+  hand_places_to_successors(out, gone);
+  for (std::size_t k = gone.size(); k-- > 0;) {
+    if (!gone[k]) continue;
+    out.accepted_effects.erase(out.accepted_effects.begin() + static_cast<std::ptrdiff_t>(k));
+    out.selected.erase(out.selected.begin() + static_cast<std::ptrdiff_t>(k));
+  }
+}
+
+// The effects of the whole arm that the others explain (explained_by_the_others), judged in the
+// order they were accepted, each beside the effects still kept: of two that explain the same
+// (the inertial parameters and a delay, seed 37 case 9), the first goes and the other stays.
+void drop_arm_effects_the_others_explain(Diagnosis& out, const Eigen::VectorXd& r0, const Eigen::VectorXd& weight,
+                                         Eigen::Index n) {
+  std::vector<bool> gone(out.accepted_effects.size(), false);
+  for (std::size_t k = 0; k < out.accepted_effects.size(); ++k) {
+    if (per_joint(out.accepted_effects[k])) continue;
+    std::vector<Effect> kept;
+    std::size_t mine = 0;
+    for (std::size_t i = 0; i < out.accepted_effects.size(); ++i) {
+      if (gone[i]) continue;
+      if (i == k) mine = kept.size();
+      kept.push_back(out.accepted_effects[i]);
+    }
+    if (kept.size() < 2) break;
+    const CrossValidation with = fit_together(kept, r0, weight, out.away, n);
+    gone[k] = explained_by_the_others(kept, mine, with, r0, weight, out.away, n);
+  }
+  drop_gone(out, gone);
+}
+
 // Once every effect is in: all of them fitted together, each per-joint effect narrowed once more
 // to the joints its own columns still carry (an offset of joint 3 that only stood in for a gain
 // of joint 5 until the gain came in is dropped), and every effect's parameters read from that
@@ -716,6 +748,7 @@ bool explained_by_the_others(const std::vector<Effect>& effects, std::size_t k, 
 void refit_together(Diagnosis& out, const Eigen::VectorXd& r0, const Eigen::VectorXd& weight, Eigen::Index n,
                     const std::vector<RegimeSplit>& splits) {
   if (out.accepted_effects.empty()) return;
+  drop_arm_effects_the_others_explain(out, r0, weight, n);
   auto fit = [&]() { return fit_together(out.accepted_effects, r0, weight, out.away, n); };
   Candidate joint;
   joint.cv = fit();
@@ -726,11 +759,7 @@ void refit_together(Diagnosis& out, const Eigen::VectorXd& r0, const Eigen::Vect
   for (std::size_t k = 0; k < out.accepted_effects.size(); ++k) {
     Effect& e = out.accepted_effects[k];
     const Eigen::Index width = e.columns.cols();
-    if (!per_joint(e) && out.accepted_effects.size() > 1 &&
-        explained_by_the_others(out.accepted_effects, k, joint.cv, r0, weight, out.away, n)) {
-      gone[k] = true;
-      narrowed_any = true;
-    } else if (per_joint(e)) {
+    if (per_joint(e)) {
       joint.effect = &e;
       const std::vector<int> joints = own_joints(joint, at, out.gap.torque_rms);
       if (joints.empty()) {  // the later effects explain all it did
@@ -746,12 +775,7 @@ void refit_together(Diagnosis& out, const Eigen::VectorXd& r0, const Eigen::Vect
     }
     at += width;
   }
-  hand_places_to_successors(out, gone);
-  for (std::size_t k = gone.size(); k-- > 0;) {
-    if (!gone[k]) continue;
-    out.accepted_effects.erase(out.accepted_effects.begin() + static_cast<std::ptrdiff_t>(k));
-    out.selected.erase(out.selected.begin() + static_cast<std::ptrdiff_t>(k));
-  }
+  drop_gone(out, gone);
   if (out.accepted_effects.empty()) {
     out.final_after = joint_rms(r0, n);
     return;
