@@ -297,6 +297,24 @@ TEST(DiagnoseCommand, TeleoperationStribeckScaleStaysTheStepsWhenNarrowingGainsN
   EXPECT_NEAR(fitted["fs1"], excess, 0.1 * excess);
 }
 
+// Blind bench seed 37, case 9: a Stribeck excess of joint 3 (20 % of the torque) beside a 26.6 ms
+// sensor delay, the MuJoCo plant's tele-operation task at 500 Hz. The inertial parameters (first)
+// and the delay were accepted; in the joint refit each explained all the other did, and judged
+// together against the joint fit both were dropped, leaving no effect at all. Judged one at a
+// time, in the order accepted, the inertial parameters go and the delay stays.
+TEST(DiagnoseCommand, OfTwoArmEffectsThatExplainTheSameOneStays) {
+  const double excess = 0.21777838961485388, delay = 0.026569486537544193;
+  const std::string effects =
+      effects_file_of({joint_effect("stribeck_friction", 3, "fs", excess),
+                       fmt::format(R"({{"effect": "sensor_delay", "parameters": {{"delay": {}}}}})", delay)});
+  const nlohmann::json d =
+      diagnose_excited("teleop_stribeck_delay", effects, "--plant mujoco --trajectory teleop --rate 500 --seed 37009");
+  ASSERT_FALSE(d["selected"].empty()) << d["verdict"].dump();
+  std::map<std::string, double> fitted = fitted_of(d);
+  ASSERT_TRUE(fitted.count("delay")) << d["selected"].dump();
+  EXPECT_NEAR(fitted["delay"], delay, 1.0 / 500);
+}
+
 // A table `depth` m above the lowest point of the hook in a run of dyncc excite, diagnosed; the
 // verdict must be the contact.
 nlohmann::json diagnosed_contact(const std::string& name, double depth, const std::string& run) {
