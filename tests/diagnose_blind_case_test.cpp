@@ -197,6 +197,19 @@ TEST(BlindBenchCase, PumaGainTakesThePlaceOfTheCoulombFrictionItTookOver) {
               {{"gain1", gain.size, 0.1 * (gain.size - 1.0)}, {"fv5", viscous.size, 0.1 * viscous.size}});
 }
 
+// Case 4 of the blind seed 127 (PUMA 560, 1 kHz): a torque gain of joint 4 (5 % of the torque)
+// beside a viscous friction of the same joint. A Coulomb friction of joint 4 was accepted first,
+// then the viscous friction and the gain, which together explain all the Coulomb friction did; the
+// place of the dropped Coulomb friction went to the first of them, the viscous friction. It goes
+// to the one that reproduces what the Coulomb friction fitted, the gain (whose column, the joint's
+// torque, is mostly its friction).
+TEST(BlindBenchCase, PumaGainTakesThePlaceOfTheCoulombFrictionItReproducesBesideAViscousOne) {
+  const Injection gain{.effect = "torque_gain", .joint = 3, .size = 1.055};
+  const Injection viscous{.effect = "viscous_friction", .joint = 3, .size = 0.08237523447855896};
+  expect_case(diagnosed("puma560", {gain, viscous}, 1000, 127U * 1000U + 4U), "torque_gain", {4},
+              {{"gain4", gain.size, 0.1 * (gain.size - 1.0)}, {"fv4", viscous.size, 0.1 * viscous.size}});
+}
+
 // Case 11 of the blind seed 43 (Panda, 81 Hz): a table touched by the hand (10 % of the torque)
 // in one or two of the five folds. The contact explained 96 % held out, but its folds' spread made
 // a payload explaining 58 % "as good", and the payload, with fewer columns, was accepted first

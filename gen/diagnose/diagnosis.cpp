@@ -651,15 +651,32 @@ Eigen::VectorXd applied_torque_scale(const CrossValidation& cv, const std::vecto
   return scale;
 }
 
+// How much of `part` (stacked rows, weighted per joint) the columns of `e` reproduce: the share of
+// its weighted square that their least-squares fit to it takes up.
+double share_reproduced(const Eigen::VectorXd& part, const Effect& e, const Eigen::VectorXd& weight, Eigen::Index n) {
+  Eigen::VectorXd w(part.size());
+  for (Eigen::Index r = 0; r < part.size(); ++r) w[r] = weight[r % n];
+  const Eigen::VectorXd target = w.cwiseProduct(part);
+  const Eigen::MatrixXd columns = w.asDiagonal() * e.columns;
+  const double total = target.squaredNorm();
+  if (total <= 0 || columns.cols() == 0) return 0.0;
+  const Eigen::VectorXd fitted = columns * columns.colPivHouseholderQr().solve(target);
+  return fitted.squaredNorm() / total;
+}
+
 // An effect that the later ones explain all of (`gone`) stood in, at its step, for one of them: the
-// first later effect that stays and acts on a joint of it takes its place in the order, so the
-// verdict names what the first step saw (seed 109 case 34: a PUMA torque gain of 1.22 on joint 1,
-// whose torque is mostly friction, was read at the first step as the Coulomb friction of joint 1,
-// which the gain took over at the third step; dropped, it left the verdict to a viscous friction of
-// joint 5 half the gain's size; seed 43 case 11: a Panda contact, whose touches fall in one or two
-// folds, was as good as a payload by the folds' spread, the payload was accepted first with a mass
-// of 1 +- 1.3 g, and the contact beside it explains all the payload did).
-void hand_places_to_successors(Diagnosis& out, std::vector<bool>& gone) {
+// later effect that stays, acts on a joint of it and reproduces most of what it fitted at its step
+// (`parts`) takes its place in the order, so the verdict names what the first step saw (seed 109
+// case 34: a PUMA torque gain of 1.22 on joint 1, whose torque is mostly friction, was read at the
+// first step as the Coulomb friction of joint 1, which the gain took over at the third step;
+// dropped, it left the verdict to a viscous friction of joint 5 half the gain's size; seed 127 case
+// 4: a PUMA gain of joint 4 and a viscous friction of the same joint both followed a Coulomb
+// friction of joint 4, whose sign the gain's column, the joint's torque, reproduces better; seed 43
+// case 11: a Panda contact, whose touches fall in one or two folds, was as good as a payload by the
+// folds' spread, the payload was accepted first with a mass of 1 +- 1.3 g, and the contact beside
+// it explains all the payload did).
+void hand_places_to_successors(Diagnosis& out, std::vector<bool>& gone, std::vector<Eigen::VectorXd>& parts,
+                               const Eigen::VectorXd& weight, Eigen::Index n) {
   auto shares_a_joint = [&](std::size_t a, std::size_t b) {
     const std::vector<int>& x = out.selected[a].joints;
     const std::vector<int>& y = out.selected[b].joints;
@@ -667,18 +684,31 @@ void hand_places_to_successors(Diagnosis& out, std::vector<bool>& gone) {
   };
   for (std::size_t k = 0; k < gone.size(); ++k) {
     if (!gone[k]) continue;
+    std::vector<std::size_t> successors;
     for (std::size_t later = k + 1; later < gone.size(); ++later) {
-      if (gone[later] || !shares_a_joint(k, later)) continue;
-      // Rotate [k, later] right by one: the successor at k, the gone one just after it.
-      const auto at = static_cast<std::ptrdiff_t>(k), to = static_cast<std::ptrdiff_t>(later) + 1;
-      std::rotate(out.accepted_effects.begin() + at, out.accepted_effects.begin() + to - 1,
-                  out.accepted_effects.begin() + to);
-      std::rotate(out.selected.begin() + at, out.selected.begin() + to - 1, out.selected.begin() + to);
-      for (std::size_t i = later; i > k; --i) gone[i] = gone[i - 1];
-      gone[k] = false;
-      ++k;  // the gone one is now at k + 1
-      break;
+      if (!gone[later] && shares_a_joint(k, later)) successors.push_back(later);
     }
+    if (successors.empty()) continue;
+    std::size_t later = successors.front();
+    if (successors.size() > 1) {
+      double most = -1;
+      for (const std::size_t j : successors) {
+        const double share = share_reproduced(parts[k], out.accepted_effects[j], weight, n);
+        if (share > most) {
+          most = share;
+          later = j;
+        }
+      }
+    }
+    // Rotate [k, later] right by one: the successor at k, the gone one and those between after it.
+    const auto at = static_cast<std::ptrdiff_t>(k), to = static_cast<std::ptrdiff_t>(later) + 1;
+    std::rotate(out.accepted_effects.begin() + at, out.accepted_effects.begin() + to - 1,
+                out.accepted_effects.begin() + to);
+    std::rotate(out.selected.begin() + at, out.selected.begin() + to - 1, out.selected.begin() + to);
+    std::rotate(parts.begin() + at, parts.begin() + to - 1, parts.begin() + to);
+    for (std::size_t i = later; i > k; --i) gone[i] = gone[i - 1];
+    gone[k] = false;
+    ++k;  // the gone one is now at k + 1
   }
 }
 
@@ -708,12 +738,14 @@ bool explained_by_the_others(const std::vector<Effect>& effects, std::size_t k, 
 }
 
 // The accepted effects where `gone`, dropped, each one's place in the order to its successor.
-void drop_gone(Diagnosis& out, std::vector<bool>& gone) {
-  hand_places_to_successors(out, gone);
+void drop_gone(Diagnosis& out, std::vector<bool>& gone, std::vector<Eigen::VectorXd>& parts,
+               const Eigen::VectorXd& weight, Eigen::Index n) {
+  hand_places_to_successors(out, gone, parts, weight, n);
   for (std::size_t k = gone.size(); k-- > 0;) {
     if (!gone[k]) continue;
     out.accepted_effects.erase(out.accepted_effects.begin() + static_cast<std::ptrdiff_t>(k));
     out.selected.erase(out.selected.begin() + static_cast<std::ptrdiff_t>(k));
+    parts.erase(parts.begin() + static_cast<std::ptrdiff_t>(k));
   }
 }
 
@@ -721,7 +753,7 @@ void drop_gone(Diagnosis& out, std::vector<bool>& gone) {
 // order they were accepted, each beside the effects still kept: of two that explain the same
 // (the inertial parameters and a delay, seed 37 case 9), the first goes and the other stays.
 void drop_arm_effects_the_others_explain(Diagnosis& out, const Eigen::VectorXd& r0, const Eigen::VectorXd& weight,
-                                         Eigen::Index n) {
+                                         Eigen::Index n, std::vector<Eigen::VectorXd>& parts) {
   std::vector<bool> gone(out.accepted_effects.size(), false);
   for (std::size_t k = 0; k < out.accepted_effects.size(); ++k) {
     if (per_joint(out.accepted_effects[k])) continue;
@@ -736,7 +768,7 @@ void drop_arm_effects_the_others_explain(Diagnosis& out, const Eigen::VectorXd& 
     const CrossValidation with = fit_together(kept, r0, weight, out.away, n);
     gone[k] = explained_by_the_others(kept, mine, with, r0, weight, out.away, n);
   }
-  drop_gone(out, gone);
+  drop_gone(out, gone, parts, weight, n);
 }
 
 // Once every effect is in: all of them fitted together, each per-joint effect narrowed once more
@@ -746,9 +778,9 @@ void drop_arm_effects_the_others_explain(Diagnosis& out, const Eigen::VectorXd& 
 // more is dropped. The stated errors add to the folds' spread how far the fit moves between
 // regimes of the motion (regime_error); the parameters are read in applied torque.
 void refit_together(Diagnosis& out, const Eigen::VectorXd& r0, const Eigen::VectorXd& weight, Eigen::Index n,
-                    const std::vector<RegimeSplit>& splits) {
+                    const std::vector<RegimeSplit>& splits, std::vector<Eigen::VectorXd> parts) {
   if (out.accepted_effects.empty()) return;
-  drop_arm_effects_the_others_explain(out, r0, weight, n);
+  drop_arm_effects_the_others_explain(out, r0, weight, n, parts);
   auto fit = [&]() { return fit_together(out.accepted_effects, r0, weight, out.away, n); };
   Candidate joint;
   joint.cv = fit();
@@ -775,7 +807,7 @@ void refit_together(Diagnosis& out, const Eigen::VectorXd& r0, const Eigen::Vect
     }
     at += width;
   }
-  drop_gone(out, gone);
+  drop_gone(out, gone, parts, weight, n);
   if (out.accepted_effects.empty()) {
     out.final_after = joint_rms(r0, n);
     return;
@@ -1029,7 +1061,8 @@ Diagnosis diagnose(const Dataset& d, const pipeline::Derivation& derivation) {
   Eigen::MatrixXd accepted(r0.size(), 0);
   Eigen::VectorXd baseline = r0;  // held-out residual of the model so far
   std::vector<std::string> taken;
-  std::vector<std::string> fitted;  // the per-joint parameters accepted so far ("fc2", ...)
+  std::vector<std::string> fitted;          // the per-joint parameters accepted so far ("fc2", ...)
+  std::vector<Eigen::VectorXd> step_parts;  // what each accepted effect fitted at its step (stacked rows)
   for (int step = 0; step < kMaxEffects; ++step) {
     const Eigen::VectorXd before = joint_rms(baseline, n);
     const StepState step_state{accepted, r0, baseline, weight, away, before, out.gap, derivation};
@@ -1159,6 +1192,7 @@ Diagnosis diagnose(const Dataset& d, const pipeline::Derivation& derivation) {
     r.effect += alternatives(*chosen, *top, order, usable, accepted.cols(), out.gap.torque_rms);
     out.selected.push_back(r);
     out.accepted_effects.push_back(*chosen->effect);
+    step_parts.emplace_back(chosen->effect->columns * chosen->cv.theta.tail(chosen->effect->columns.cols()));
     taken.push_back(chosen->effect->family);
     for (std::size_t k = 0; k < chosen->effect->parameters.size(); ++k) {
       if (chosen->effect->joint_of[k] >= 0) fitted.push_back(chosen->effect->parameters[k]);
@@ -1172,7 +1206,7 @@ Diagnosis diagnose(const Dataset& d, const pipeline::Derivation& derivation) {
   }
   out.final_after = joint_rms(baseline, n);
   rechoose_points(out, effects, r0, weight, n);
-  refit_together(out, r0, weight, n, regime_splits(d, away));
+  refit_together(out, r0, weight, n, regime_splits(d, away), std::move(step_parts));
 
   if (out.selected.empty()) {
     // Structure left: a joint whose gap is material and above the noise floor, what the positions'
