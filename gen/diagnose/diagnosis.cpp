@@ -415,6 +415,31 @@ const Candidate* first_of_a_smaller_pair(const Candidate* chosen, const std::vec
   return chosen;
 }
 
+// Of the usable candidates as good as `top` (as_good_as) that explain some of the same joints,
+// the one with the fewest columns. (A candidate as good by the folds' spread that explains other
+// joints is not an alternative but the next step's effect: a spring of the Panda's joint 2, 38 %,
+// led a Stribeck friction of joint 1, 58 % over a wide interval, by having fewer columns: seed
+// 127 case 59.)
+template <typename Usable>
+const Candidate* simplest_equal(const Candidate* top, const std::vector<const Candidate*>& order, Usable usable,
+                                const Eigen::VectorXd& before, Eigen::Index offset, const Eigen::VectorXd& torque_rms) {
+  const std::vector<int> top_joints = describe(*top, before, offset, torque_rms).joints;
+  auto of_the_same_joints = [&](const Candidate* c) {
+    const std::vector<int> joints = describe(*c, before, offset, torque_rms).joints;
+    return joints.empty() || top_joints.empty() || std::any_of(joints.begin(), joints.end(), [&](int j) {
+             return std::find(top_joints.begin(), top_joints.end(), j) != top_joints.end();
+           });
+  };
+  const Candidate* pick = top;
+  for (const Candidate* c : order) {
+    if (usable(c) && as_good_as(*c, *top) && c->effect->columns.cols() < pick->effect->columns.cols() &&
+        of_the_same_joints(c)) {
+      pick = c;
+    }
+  }
+  return pick;
+}
+
 // The columns of `e` on `joints` (0-based) if it is a per-joint effect and `joints` is not empty;
 // else all of them.
 Eigen::Index columns_on(const Effect& e, const std::vector<int>& joints) {
@@ -1134,24 +1159,7 @@ Diagnosis diagnose(const Dataset& d, const pipeline::Derivation& derivation) {
       const auto first = std::find_if(order.begin(), order.end(), usable);
       if (first == order.end()) break;
       top = *first;
-      const Candidate* pick = top;
-      // (Equal explanations of the same joints: a candidate as good by the folds' spread that
-      // explains other joints is not an alternative but the next step's effect; a spring of the
-      // Panda's joint 2, 38 %, led a Stribeck friction of joint 1, 58 % over a wide interval, by
-      // having fewer columns: seed 127 case 59.)
-      const std::vector<int> top_joints = describe(*top, before, accepted.cols(), out.gap.torque_rms).joints;
-      auto of_the_same_joints = [&](const Candidate* c) {
-        const std::vector<int> joints = describe(*c, before, accepted.cols(), out.gap.torque_rms).joints;
-        return joints.empty() || top_joints.empty() || std::any_of(joints.begin(), joints.end(), [&](int j) {
-                 return std::find(top_joints.begin(), top_joints.end(), j) != top_joints.end();
-               });
-      };
-      for (const Candidate* c : order) {
-        if (usable(c) && as_good_as(*c, *top) && c->effect->columns.cols() < pick->effect->columns.cols() &&
-            of_the_same_joints(c)) {
-          pick = c;
-        }
-      }
+      const Candidate* pick = simplest_equal(top, order, usable, before, accepted.cols(), out.gap.torque_rms);
       const Candidate* larger = pick;
       pick = first_of_a_smaller_pair(pick, order, best, usable, can_lead_a_pair, accepted, r0, baseline, weight, n);
       if (pick != larger) led_a_pair.push_back(pick);
