@@ -185,15 +185,13 @@ bool better_by_the_margin(const Candidate& a, const Candidate& b) {
   return a.shrink > b.shrink + kAcceptShrink * b.shrink + 0.01;
 }
 
-Candidate evaluate(const Effect& effect, const Eigen::MatrixXd& accepted, const Eigen::VectorXd& r0,
-                   const Eigen::VectorXd& baseline, const Eigen::VectorXd& weight, Eigen::Index n) {
-  Candidate c;
-  c.effect = &effect;
-  Eigen::MatrixXd e(r0.size(), accepted.cols() + effect.columns.cols());
-  e << accepted, effect.columns;
-  c.cv = cross_validate(r0, e, n, weight);
-  const Eigen::Index samples = r0.size() / n;
-  c.shrink = 1.0 - score(c.cv.heldout, weight, n, 0, samples) / score(baseline, weight, n, 0, samples);
+// What the held-out residual of `c.cv` removes of `baseline`'s: the weighted shrink over all rows,
+// per fold, and its 95 % interval over the folds.
+void set_shrink(Candidate& c, const Eigen::VectorXd& baseline, const Eigen::VectorXd& weight, Eigen::Index n) {
+  const Eigen::Index samples = baseline.size() / n;
+  const double total = score(baseline, weight, n, 0, samples);
+  c.shrink = total > 0 ? 1.0 - score(c.cv.heldout, weight, n, 0, samples) / total : 0.0;
+  c.folds.clear();
   Eigen::Index begin = 0;
   for (const Eigen::Index end : c.cv.fold_end) {
     const double before = score(baseline, weight, n, begin, end);
@@ -203,6 +201,16 @@ Candidate evaluate(const Effect& effect, const Eigen::MatrixXd& accepted, const 
   const double half = half_interval(c.folds);
   c.low = c.shrink - half;
   c.high = c.shrink + half;
+}
+
+Candidate evaluate(const Effect& effect, const Eigen::MatrixXd& accepted, const Eigen::VectorXd& r0,
+                   const Eigen::VectorXd& baseline, const Eigen::VectorXd& weight, Eigen::Index n) {
+  Candidate c;
+  c.effect = &effect;
+  Eigen::MatrixXd e(r0.size(), accepted.cols() + effect.columns.cols());
+  e << accepted, effect.columns;
+  c.cv = cross_validate(r0, e, n, weight);
+  set_shrink(c, baseline, weight, n);
   c.after = joint_rms(c.cv.heldout, n);
   return c;
 }
@@ -415,6 +423,11 @@ const Candidate* first_of_a_smaller_pair(const Candidate* chosen, const std::vec
   return chosen;
 }
 
+// Whether two joint lists have a joint in common.
+bool share_a_joint(const std::vector<int>& a, const std::vector<int>& b) {
+  return std::any_of(a.begin(), a.end(), [&](int j) { return std::find(b.begin(), b.end(), j) != b.end(); });
+}
+
 // Of the usable candidates as good as `top` (as_good_as) that explain some of the same joints,
 // the one with the fewest columns. (A candidate as good by the folds' spread that explains other
 // joints is not an alternative but the next step's effect: a spring of the Panda's joint 2, 38 %,
@@ -426,9 +439,7 @@ const Candidate* simplest_equal(const Candidate* top, const std::vector<const Ca
   const std::vector<int> top_joints = describe(*top, before, offset, torque_rms).joints;
   auto of_the_same_joints = [&](const Candidate* c) {
     const std::vector<int> joints = describe(*c, before, offset, torque_rms).joints;
-    return joints.empty() || top_joints.empty() || std::any_of(joints.begin(), joints.end(), [&](int j) {
-             return std::find(top_joints.begin(), top_joints.end(), j) != top_joints.end();
-           });
+    return joints.empty() || top_joints.empty() || share_a_joint(joints, top_joints);
   };
   const Candidate* pick = top;
   for (const Candidate* c : order) {
@@ -702,16 +713,12 @@ double share_reproduced(const Eigen::VectorXd& part, const Effect& e, const Eige
 // it explains all the payload did).
 void hand_places_to_successors(Diagnosis& out, std::vector<bool>& gone, std::vector<Eigen::VectorXd>& parts,
                                const Eigen::VectorXd& weight, Eigen::Index n) {
-  auto shares_a_joint = [&](std::size_t a, std::size_t b) {
-    const std::vector<int>& x = out.selected[a].joints;
-    const std::vector<int>& y = out.selected[b].joints;
-    return std::any_of(x.begin(), x.end(), [&](int j) { return std::find(y.begin(), y.end(), j) != y.end(); });
-  };
   for (std::size_t k = 0; k < gone.size(); ++k) {
     if (!gone[k]) continue;
     std::vector<std::size_t> successors;
     for (std::size_t later = k + 1; later < gone.size(); ++later) {
-      if (!gone[later] && shares_a_joint(k, later)) successors.push_back(later);
+      if (!gone[later] && share_a_joint(out.selected[k].joints, out.selected[later].joints))
+        successors.push_back(later);
     }
     if (successors.empty()) continue;
     std::size_t later = successors.front();
@@ -748,18 +755,10 @@ bool explained_by_the_others(const std::vector<Effect>& effects, std::size_t k, 
                              Eigen::Index n) {
   std::vector<Effect> others = effects;
   others.erase(others.begin() + static_cast<std::ptrdiff_t>(k));
-  const CrossValidation without = fit_together(others, r0, weight, away, n);
-  const Eigen::Index samples = r0.size() / n;
-  const double before = score(without.heldout, weight, n, 0, samples);
-  const double shrink = before > 0 ? 1.0 - score(with.heldout, weight, n, 0, samples) / before : 0.0;
-  std::vector<double> folds;
-  Eigen::Index begin = 0;
-  for (const Eigen::Index end : with.fold_end) {
-    const double fold_before = score(without.heldout, weight, n, begin, end);
-    folds.push_back(fold_before > 0 ? 1.0 - score(with.heldout, weight, n, begin, end) / fold_before : 0.0);
-    begin = end;
-  }
-  return shrink < kAcceptShrink || shrink - half_interval(folds) <= 0.0;
+  Candidate mine;
+  mine.cv = with;
+  set_shrink(mine, fit_together(others, r0, weight, away, n).heldout, weight, n);
+  return mine.shrink < kAcceptShrink || mine.low <= 0.0;
 }
 
 // The accepted effects where `gone`, dropped, each one's place in the order to its successor.
