@@ -11,6 +11,7 @@ dyncc_add_test(dynamics_tests
   dynamics_base_test.cpp
   dynamics_skew_test.cpp
   dynamics_verify_test.cpp
+  dynamics_numeric_batch_test.cpp
 )
 target_link_libraries(dynamics_tests PRIVATE dyncc_pipeline nlohmann_json::nlohmann_json)
 # The verify tests run the dyncc binary (DYNCC_BINARY): build it before the tests.

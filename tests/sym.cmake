@@ -8,6 +8,7 @@ dyncc_add_test(sym_tests
   sym_parse_print_test.cpp
   sym_rational_test.cpp
   sym_zero_test.cpp
+  sym_evaluate_test.cpp
   sym_cli_test.cpp
 )
 # The CLI tests run the dyncc binary (DYNCC_BINARY): build it before the tests.

@@ -44,32 +44,50 @@ Eigen::MatrixXd ContactGeometry::Frame::point_jacobian(const Eigen::Vector3d& c)
   return rotation * j;
 }
 
-ContactGeometry::Frame ContactGeometry::frame(const Eigen::VectorXd& q) const {
-  const auto n = q.size();
-  const std::vector<double> values = (*kinematics_)(std::span<const double>(q.data(), static_cast<std::size_t>(n)));
+ContactGeometry::Frame ContactGeometry::frame(const Eigen::VectorXd& q) const { return frames(q.transpose()).front(); }
+
+std::vector<ContactGeometry::Frame> ContactGeometry::frames(const Eigen::MatrixXd& q) const {
+  const Eigen::Index n = q.cols(), rows = q.rows();
+  Eigen::MatrixXd values(rows, static_cast<Eigen::Index>(kinematics_->output_count()));
+  kinematics_->evaluate_rows({q.data(), static_cast<std::size_t>(q.size())}, static_cast<std::size_t>(rows),
+                             {values.data(), static_cast<std::size_t>(values.size())});
   // The outputs in their order: rotation (row-major), origin, then per coordinate linear and angular.
-  const Eigen::Map<const Eigen::VectorXd> out(values.data(), static_cast<Eigen::Index>(values.size()));
-  Frame f;
-  f.rotation = Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(values.data());
-  f.origin = out.segment<3>(9);
-  f.linear = Eigen::Map<const Eigen::MatrixXd>(values.data() + 12, 3, n);
-  f.angular = Eigen::Map<const Eigen::MatrixXd>(values.data() + 12 + 3 * n, 3, n);
-  return f;
+  std::vector<Frame> out;
+  out.reserve(static_cast<std::size_t>(rows));
+  for (Eigen::Index r = 0; r < rows; ++r) {
+    const Eigen::VectorXd v = values.row(r).transpose();
+    Frame f;
+    f.rotation = Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(v.data());
+    f.origin = v.segment<3>(9);
+    f.linear = Eigen::Map<const Eigen::MatrixXd>(v.data() + 12, 3, n);
+    f.angular = Eigen::Map<const Eigen::MatrixXd>(v.data() + 12 + 3 * n, 3, n);
+    out.push_back(std::move(f));
+  }
+  return out;
 }
 
-ContactGeometry::Basis ContactGeometry::at(const Eigen::VectorXd& q) const {
+ContactGeometry::Basis ContactGeometry::at(const Eigen::VectorXd& q) const { return at_rows(q.transpose()).front(); }
+
+std::vector<ContactGeometry::Basis> ContactGeometry::at_rows(const Eigen::MatrixXd& q) const {
   const dyn::NumericModel& model = *derivation_->numeric;
-  const Eigen::VectorXd zero = Eigen::VectorXd::Zero(q.size());
-  const Eigen::MatrixXd y = model.regressor({q, zero, zero, zero});
-  Basis b{Eigen::Vector4d::Zero(), Eigen::MatrixXd::Zero(q.size(), 4)};
+  const Eigen::Index n = q.cols();
+  const Eigen::VectorXd zero = Eigen::VectorXd::Zero(n);
+  std::vector<dyn::State> states;
+  states.reserve(static_cast<std::size_t>(q.rows()));
+  for (Eigen::Index r = 0; r < q.rows(); ++r) states.push_back({q.row(r).transpose(), zero, zero, zero});
+  const std::vector<Eigen::MatrixXd> ys = model.regressor(states);
+  std::vector<Basis> out(states.size(), Basis{Eigen::Vector4d::Zero(), Eigen::MatrixXd::Zero(n, 4)});
   Eigen::VectorXd unit = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(model.parameter_count()));
   for (int k = 0; k < 4; ++k) {
     unit.setZero();
     unit[columns_[k]] = 1.0;
-    b.height[k] = model.energy(q, zero, unit) / g_;
-    b.lever.col(k) = -y.col(columns_[k]) / g_;
+    const std::vector<double> energies = model.energy(states, unit);
+    for (std::size_t r = 0; r < states.size(); ++r) {
+      out[r].height[k] = energies[r] / g_;
+      out[r].lever.col(k) = -ys[r].col(columns_[k]) / g_;
+    }
   }
-  return b;
+  return out;
 }
 
 }  // namespace dyncc::diagnose

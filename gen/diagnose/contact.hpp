@@ -30,6 +30,8 @@ class ContactGeometry {
   };
   /// The basis at a configuration.
   [[nodiscard]] Basis at(const Eigen::VectorXd& q) const;
+  /// The bases at many configurations (one per row of q), computed together: the same numbers.
+  [[nodiscard]] std::vector<Basis> at_rows(const Eigen::MatrixXd& q) const;
 
   /// The payload link's frame and velocity Jacobians at a configuration, in base coordinates.
   struct Frame {
@@ -40,6 +42,7 @@ class ContactGeometry {
     [[nodiscard]] Eigen::MatrixXd point_jacobian(const Eigen::Vector3d& c) const;
   };
   [[nodiscard]] Frame frame(const Eigen::VectorXd& q) const;
+  [[nodiscard]] std::vector<Frame> frames(const Eigen::MatrixXd& q) const;  // one per row of q
   /// Unit vector along gravity (base coordinates).
   [[nodiscard]] Eigen::Vector3d down() const { return down_; }
 

@@ -17,7 +17,10 @@ constexpr double kEvaluationRate = 100.0;  // Hz: at most this many evaluation r
 constexpr double kRowsPerCutoff = 8.0;     // analysis rows per 1/cutoff
 constexpr double kEdgeTrimPeriods = 2.0;   // filter periods dropped at each end
 constexpr double kSensitivityStep = 1e-6;  // rad (or m) for d tau / dq
-constexpr unsigned kNoiseSeed = 1;         // the draw of position_noise_torque (fixed: same log, same diagnosis)
+// Rows whose model torques are computed together (NumericModel's batch evaluation): enough to
+// fill the tape's blocks with the 2n moved states of each, few enough to keep them small.
+constexpr Eigen::Index kRowsPerBatch = 64;
+constexpr unsigned kNoiseSeed = 1;  // the draw of position_noise_torque (fixed: same log, same diagnosis)
 
 // A held command acts over its whole period: it stands for the torque at the period's middle. On
 // a uniform grid, interpolating between those middles gives each row the mean torque over the
@@ -98,13 +101,19 @@ Eigen::VectorXd position_noise_torque(const std::vector<JointLog>& logs, const D
     }
     const Conditioned c = condition_log(noisy, d.audits[l], d.cutoff, false);  // its torque is not used
     const Dataset::Segment& g = d.segments[l];
-    for (Eigen::Index s = 0; s < c.t.size(); ++s) {
-      const dyn::Evaluation e = model.evaluate({c.q.row(s).transpose(), c.qd.row(s).transpose(),
-                                                c.qd.row(s).transpose(), c.qdd.row(s).transpose()},
-                                               nominal, false);
-      const Eigen::Index row = g.begin + s;
-      for (Eigen::Index j = 0; j < n; ++j) {
-        change(row * n + j, 0) = (e.tau[j] - e.friction[j]) - (d.model_tau(row, j) - d.model_friction(row, j));
+    for (Eigen::Index chunk = 0; chunk < c.t.size(); chunk += kRowsPerBatch) {
+      std::vector<dyn::State> states;
+      for (Eigen::Index s = chunk; s < std::min(chunk + kRowsPerBatch, c.t.size()); ++s) {
+        states.push_back(
+            {c.q.row(s).transpose(), c.qd.row(s).transpose(), c.qd.row(s).transpose(), c.qdd.row(s).transpose()});
+      }
+      const std::vector<dyn::Evaluation> at = model.evaluate(states, nominal, false);
+      for (std::size_t k = 0; k < at.size(); ++k) {
+        const dyn::Evaluation& e = at[k];
+        const Eigen::Index row = g.begin + chunk + static_cast<Eigen::Index>(k);
+        for (Eigen::Index j = 0; j < n; ++j) {
+          change(row * n + j, 0) = (e.tau[j] - e.friction[j]) - (d.model_tau(row, j) - d.model_friction(row, j));
+        }
       }
     }
   }
@@ -251,35 +260,51 @@ Dataset build_dataset(const std::vector<JointLog>& logs, const pipeline::Derivat
   for (std::size_t l = 0; l < parts.size(); ++l) {
     const Conditioned& c = parts[l];
     const Eigen::Index begin = row;
-    for (Eigen::Index s = 0; s < c.t.size(); ++s, ++row) {
-      d.t[row] = c.t[s];
-      d.log_of.push_back(static_cast<int>(l));
-      d.q.row(row) = c.q.row(s);
-      d.q_sharp.row(row) = c.q_sharp.row(s);
-      d.qd.row(row) = c.qd.row(s);
-      d.qdd.row(row) = c.qdd.row(s);
-      d.tau.row(row) = c.tau.row(s);
-      dyn::State state{c.q.row(s).transpose(), c.qd.row(s).transpose(), c.qd.row(s).transpose(),
-                       c.qdd.row(s).transpose()};
-      const dyn::Evaluation e = model.evaluate(state, nominal);
-      for (Eigen::Index j = 0; j < n; ++j) {
-        const double v = c.qd(s, j), sign = v > 0 ? 1.0 : (v < 0 ? -1.0 : 0.0);
-        d.model_friction(row, j) = e.friction[j] + coulomb[j] * (smooth_sign(v) - sign);
-        d.model_tau(row, j) = e.tau[j] + coulomb[j] * (smooth_sign(v) - sign);
+    for (Eigen::Index chunk = 0; chunk < c.t.size(); chunk += kRowsPerBatch) {
+      // The model at a batch of rows, and at each row's positions moved by +-step, one joint at a
+      // time: state (1 + 2 j) and (2 + 2 j) of row k are states[k * (1 + 2 n) + ...].
+      const Eigen::Index rows = std::min(kRowsPerBatch, c.t.size() - chunk);
+      std::vector<dyn::State> states, moved;
+      for (Eigen::Index s = chunk; s < chunk + rows; ++s) {
+        const dyn::State state{c.q.row(s).transpose(), c.qd.row(s).transpose(), c.qd.row(s).transpose(),
+                               c.qdd.row(s).transpose()};
+        states.push_back(state);
+        for (Eigen::Index j = 0; j < n; ++j) {
+          dyn::State plus = state, minus = state;
+          plus.q[j] += kSensitivityStep;
+          minus.q[j] -= kSensitivityStep;
+          moved.push_back(std::move(plus));
+          moved.push_back(std::move(minus));
+        }
       }
-      d.standard.middleRows(row * n, n) = e.Y;
-      for (std::size_t b = 0; b < rigid_columns.size(); ++b) {
-        d.base_rigid.block(row * n, static_cast<Eigen::Index>(b), n, 1) = e.Y.col(rigid_columns[b]);
+      const std::vector<dyn::Evaluation> at = model.evaluate(states, nominal);
+      const std::vector<dyn::Evaluation> at_moved = model.evaluate(moved, nominal, false);
+      for (Eigen::Index s = chunk; s < chunk + rows; ++s, ++row) {
+        const auto k = static_cast<std::size_t>(s - chunk);
+        d.t[row] = c.t[s];
+        d.log_of.push_back(static_cast<int>(l));
+        d.q.row(row) = c.q.row(s);
+        d.q_sharp.row(row) = c.q_sharp.row(s);
+        d.qd.row(row) = c.qd.row(s);
+        d.qdd.row(row) = c.qdd.row(s);
+        d.tau.row(row) = c.tau.row(s);
+        const dyn::Evaluation& e = at[k];
+        for (Eigen::Index j = 0; j < n; ++j) {
+          const double v = c.qd(s, j), sign = v > 0 ? 1.0 : (v < 0 ? -1.0 : 0.0);
+          d.model_friction(row, j) = e.friction[j] + coulomb[j] * (smooth_sign(v) - sign);
+          d.model_tau(row, j) = e.tau[j] + coulomb[j] * (smooth_sign(v) - sign);
+        }
+        d.standard.middleRows(row * n, n) = e.Y;
+        for (std::size_t b = 0; b < rigid_columns.size(); ++b) {
+          d.base_rigid.block(row * n, static_cast<Eigen::Index>(b), n, 1) = e.Y.col(rigid_columns[b]);
+        }
+        Eigen::MatrixXd sensitivity(n, n);
+        for (Eigen::Index j = 0; j < n; ++j) {
+          const std::size_t plus = k * static_cast<std::size_t>(2 * n) + static_cast<std::size_t>(2 * j);
+          sensitivity.col(j) = (at_moved[plus].tau - at_moved[plus + 1].tau) / (2 * kSensitivityStep);
+        }
+        d.dtau_dq.push_back(sensitivity);
       }
-      Eigen::MatrixXd sensitivity(n, n);
-      for (Eigen::Index j = 0; j < n; ++j) {
-        dyn::State plus = state, minus = state;
-        plus.q[j] += kSensitivityStep;
-        minus.q[j] -= kSensitivityStep;
-        sensitivity.col(j) = (model.evaluate(plus, nominal, false).tau - model.evaluate(minus, nominal, false).tau) /
-                             (2 * kSensitivityStep);
-      }
-      d.dtau_dq.push_back(sensitivity);
     }
     const Eigen::Index count = row - begin;
     for (Eigen::Index j = 0; j < n; ++j) {

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <numbers>
+#include <span>
 #include <vector>
 
 #include "diagnose/signals.hpp"
@@ -15,6 +16,7 @@ constexpr double kLargestShift = 1.0;   // rad: a fit beyond this is not a shift
 // rad: a delay's phase at the filter's cut-off below which its tangent is as good as the secant
 // (the cubic term left out is under 0.5^2 / 6 = 4 % of the shift even at the cut-off)
 constexpr double kLinearPhase = 0.5;
+constexpr Eigen::Index kRowsPerBatch = 64;  // rows whose model torques are computed together
 
 // The nominal model's torque without its friction. The drive's friction acts at the motor's
 // velocity, which is what the log's positions give, so the log and the model have the same
@@ -25,11 +27,17 @@ class ModelTorque {
  public:
   explicit ModelTorque(const pipeline::Derivation& derivation)
       : model_(*derivation.numeric), nominal_(model_.nominal_standard_values()) {}
-  [[nodiscard]] Eigen::VectorXd at(const Eigen::VectorXd& q, const Eigen::VectorXd& qd, const Eigen::VectorXd& qdd,
-                                   Eigen::MatrixXd* mass = nullptr) const {
-    const dyn::Evaluation e = model_.evaluate({q, qd, qd, qdd}, nominal_, false);
-    if (mass != nullptr) *mass = e.H;
-    return e.tau - e.friction;
+  // At many states (v = qd), in one batch; masses, if asked for, their H.
+  [[nodiscard]] std::vector<Eigen::VectorXd> at(std::span<const dyn::State> states,
+                                                std::vector<Eigen::MatrixXd>* masses = nullptr) const {
+    const std::vector<dyn::Evaluation> all = model_.evaluate(states, nominal_, false);
+    std::vector<Eigen::VectorXd> out;
+    out.reserve(all.size());
+    for (const dyn::Evaluation& e : all) {
+      out.emplace_back(e.tau - e.friction);
+      if (masses != nullptr) masses->push_back(e.H);
+    }
+    return out;
   }
 
  private:
@@ -42,12 +50,21 @@ Eigen::VectorXd secant(const Dataset& d, const ModelTorque& model, const Shift& 
                        Eigen::Index j, double theta) {
   const Eigen::Index n = d.n;
   Eigen::VectorXd column(d.samples() * n);
-  for (Eigen::Index s = 0; s < d.samples(); ++s) {
-    Eigen::VectorXd q = d.q.row(s).transpose(), qd = d.qd.row(s).transpose(), qdd = d.qdd.row(s).transpose();
-    q[j] -= theta * shift.w(s, j);  // measured = link + theta w
-    qd[j] -= theta * shift.wd(s, j);
-    qdd[j] -= theta * shift.wdd(s, j);
-    column.segment(s * n, n) = (model.at(q, qd, qdd) - tau.row(s).transpose()) / theta;
+  for (Eigen::Index chunk = 0; chunk < d.samples(); chunk += kRowsPerBatch) {
+    const Eigen::Index rows = std::min(kRowsPerBatch, d.samples() - chunk);
+    std::vector<dyn::State> states;
+    for (Eigen::Index s = chunk; s < chunk + rows; ++s) {
+      dyn::State x{d.q.row(s).transpose(), d.qd.row(s).transpose(), {}, d.qdd.row(s).transpose()};
+      x.q[j] -= theta * shift.w(s, j);  // measured = link + theta w
+      x.qd[j] -= theta * shift.wd(s, j);
+      x.a[j] -= theta * shift.wdd(s, j);
+      x.v = x.qd;
+      states.push_back(std::move(x));
+    }
+    const std::vector<Eigen::VectorXd> shifted = model.at(states);
+    for (Eigen::Index s = chunk; s < chunk + rows; ++s) {
+      column.segment(s * n, n) = (shifted[static_cast<std::size_t>(s - chunk)] - tau.row(s).transpose()) / theta;
+    }
   }
   return column;
 }
@@ -98,21 +115,37 @@ ModelSensitivity model_sensitivity(const Dataset& d, const pipeline::Derivation&
   ModelSensitivity m;
   m.tau.resize(samples, n);
   m.transmitted.resize(samples, n);
-  for (Eigen::Index s = 0; s < samples; ++s) {
-    const Eigen::VectorXd q = d.q.row(s).transpose(), qd = d.qd.row(s).transpose(), qdd = d.qdd.row(s).transpose();
-    Eigen::MatrixXd mass;
-    const Eigen::VectorXd tau = model.at(q, qd, qdd, &mass);
-    m.tau.row(s) = tau.transpose();
-    m.transmitted.row(s) = d.tau.row(s) - d.model_friction.row(s);
-    m.by_qdd.push_back(mass);  // the torque is H qdd + ...
-    // By velocity: the torque is quadratic in it, so a short forward difference is its derivative.
-    Eigen::MatrixXd by_qd(n, n);
-    for (Eigen::Index j = 0; j < n; ++j) {
-      Eigen::VectorXd faster = qd;
-      faster[j] += kVelocityStep;
-      by_qd.col(j) = (model.at(q, faster, qdd) - tau) / kVelocityStep;
+  for (Eigen::Index chunk = 0; chunk < samples; chunk += kRowsPerBatch) {
+    // Each row's state, then the same with one joint's velocity faster, joint by joint: the
+    // torque is quadratic in the velocity, so a short forward difference is its derivative.
+    const Eigen::Index rows = std::min(kRowsPerBatch, samples - chunk);
+    std::vector<dyn::State> states, faster;
+    for (Eigen::Index s = chunk; s < chunk + rows; ++s) {
+      const dyn::State x{d.q.row(s).transpose(), d.qd.row(s).transpose(), d.qd.row(s).transpose(),
+                         d.qdd.row(s).transpose()};
+      for (Eigen::Index j = 0; j < n; ++j) {
+        dyn::State y = x;
+        y.qd[j] += kVelocityStep;
+        y.v = y.qd;
+        faster.push_back(std::move(y));
+      }
+      states.push_back(x);
     }
-    m.by_qd.push_back(by_qd);
+    std::vector<Eigen::MatrixXd> masses;
+    const std::vector<Eigen::VectorXd> at = model.at(states, &masses);
+    const std::vector<Eigen::VectorXd> at_faster = model.at(faster);
+    for (Eigen::Index s = chunk; s < chunk + rows; ++s) {
+      const auto k = static_cast<std::size_t>(s - chunk);
+      const Eigen::VectorXd& tau = at[k];
+      m.tau.row(s) = tau.transpose();
+      m.transmitted.row(s) = d.tau.row(s) - d.model_friction.row(s);
+      m.by_qdd.push_back(masses[k]);  // the torque is H qdd + ...
+      Eigen::MatrixXd by_qd(n, n);
+      for (Eigen::Index j = 0; j < n; ++j) {
+        by_qd.col(j) = (at_faster[k * static_cast<std::size_t>(n) + static_cast<std::size_t>(j)] - tau) / kVelocityStep;
+      }
+      m.by_qd.push_back(by_qd);
+    }
   }
   return m;
 }

@@ -93,6 +93,22 @@ Eigen::VectorXd NumericModel::friction(const State& s, const Eigen::VectorXd& st
   return f;
 }
 
+Evaluation NumericModel::assemble(const State& s, const Eigen::VectorXd& standard, const double* values,
+                                  std::size_t stride) const {
+  const auto n = static_cast<Eigen::Index>(n_);
+  const Eigen::InnerStride<> step(static_cast<Eigen::Index>(stride));
+  using Strided = Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>, 0,
+                             Eigen::Stride<Eigen::Dynamic, Eigen::Dynamic>>;
+  const Eigen::Stride<Eigen::Dynamic, Eigen::Dynamic> matrix_step(n * step.inner(), step.inner());
+  Evaluation e;
+  e.H = Strided(values, n, n, matrix_step);
+  e.C = Strided(values + n * n * step.inner(), n, n, matrix_step);
+  e.g = Eigen::Map<const Eigen::VectorXd, 0, Eigen::InnerStride<>>(values + 2 * n * n * step.inner(), n, step);
+  e.friction = friction(s, standard);
+  e.tau = e.H * s.a + e.C * s.v + e.g + e.friction;
+  return e;
+}
+
 Evaluation NumericModel::evaluate(const State& s, const Eigen::VectorXd& standard, bool with_regressor) const {
   const auto n = static_cast<Eigen::Index>(n_);
   std::vector<double> in;
@@ -100,31 +116,78 @@ Evaluation NumericModel::evaluate(const State& s, const Eigen::VectorXd& standar
   in.insert(in.end(), s.qd.data(), s.qd.data() + n);
   in.insert(in.end(), standard.data(), standard.data() + standard.size());
   const std::vector<double> out = dynamics_(in);
-  Evaluation e;
-  e.H = Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(out.data(), n, n);
-  e.C = Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(out.data() + n * n, n,
-                                                                                                 n);
-  e.g = Eigen::Map<const Eigen::VectorXd>(out.data() + 2 * n * n, n);
-  e.friction = friction(s, standard);
-  e.tau = e.H * s.a + e.C * s.v + e.g + e.friction;
+  Evaluation e = assemble(s, standard, out.data(), 1);
   if (with_regressor) e.Y = regressor(s);
   return e;
 }
 
-Eigen::MatrixXd NumericModel::regressor(const State& s) const {
+std::vector<Evaluation> NumericModel::evaluate(std::span<const State> states, const Eigen::VectorXd& standard,
+                                               bool with_regressor) const {
+  const auto rows = static_cast<Eigen::Index>(states.size());
+  const auto n = static_cast<Eigen::Index>(n_);
+  // One state per row, inputs q, qd, standard in columns (column-major: evaluate_rows' layout).
+  Eigen::MatrixXd in(rows, 2 * n + standard.size());
+  for (Eigen::Index r = 0; r < rows; ++r) {
+    const State& s = states[static_cast<std::size_t>(r)];
+    in.row(r).head(n) = s.q.transpose();
+    in.row(r).segment(n, n) = s.qd.transpose();
+    in.row(r).tail(standard.size()) = standard.transpose();
+  }
+  Eigen::MatrixXd out(rows, static_cast<Eigen::Index>(dynamics_.output_count()));
+  dynamics_.evaluate_rows({in.data(), static_cast<std::size_t>(in.size())}, states.size(),
+                          {out.data(), static_cast<std::size_t>(out.size())});
+  std::vector<Eigen::MatrixXd> ys;
+  if (with_regressor) ys = regressor(states);
+  std::vector<Evaluation> result;
+  result.reserve(states.size());
+  for (Eigen::Index r = 0; r < rows; ++r) {
+    const auto i = static_cast<std::size_t>(r);
+    result.push_back(assemble(states[i], standard, out.data() + r, states.size()));
+    if (with_regressor) result.back().Y = std::move(ys[i]);
+  }
+  return result;
+}
+
+Eigen::MatrixXd NumericModel::assemble_regressor(const State& s, const double* values, std::size_t stride) const {
   const auto n = static_cast<Eigen::Index>(n_);
   const auto p = static_cast<Eigen::Index>(p_);
-  std::vector<double> in;
-  for (const Eigen::VectorXd* v : {&s.q, &s.qd, &s.v, &s.a}) in.insert(in.end(), v->data(), v->data() + n);
-  const std::vector<double> out = regressor_(in);
-  Eigen::MatrixXd Y =
-      Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(out.data(), n, p);
+  const auto step = static_cast<Eigen::Index>(stride);
+  Eigen::MatrixXd Y = Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>, 0,
+                                 Eigen::Stride<Eigen::Dynamic, Eigen::Dynamic>>(
+      values, n, p, Eigen::Stride<Eigen::Dynamic, Eigen::Dynamic>(p * step, step));
   for (std::size_t k = 0; k < n_; ++k) {
     const auto i = static_cast<Eigen::Index>(k);
     if (const int fc = model_.params.coulomb_of[k]; fc >= 0) Y(i, fc) = (s.qd[i] > 0) - (s.qd[i] < 0);
     if (const int fv = model_.params.viscous_of[k]; fv >= 0) Y(i, fv) = s.v[i];
   }
   return Y;
+}
+
+Eigen::MatrixXd NumericModel::regressor(const State& s) const {
+  const auto n = static_cast<Eigen::Index>(n_);
+  std::vector<double> in;
+  for (const Eigen::VectorXd* v : {&s.q, &s.qd, &s.v, &s.a}) in.insert(in.end(), v->data(), v->data() + n);
+  const std::vector<double> out = regressor_(in);
+  return assemble_regressor(s, out.data(), 1);
+}
+
+std::vector<Eigen::MatrixXd> NumericModel::regressor(std::span<const State> states) const {
+  const auto rows = static_cast<Eigen::Index>(states.size());
+  const auto n = static_cast<Eigen::Index>(n_);
+  Eigen::MatrixXd in(rows, 4 * n);
+  for (Eigen::Index r = 0; r < rows; ++r) {
+    const State& s = states[static_cast<std::size_t>(r)];
+    in.row(r) << s.q.transpose(), s.qd.transpose(), s.v.transpose(), s.a.transpose();
+  }
+  Eigen::MatrixXd out(rows, static_cast<Eigen::Index>(regressor_.output_count()));
+  regressor_.evaluate_rows({in.data(), static_cast<std::size_t>(in.size())}, states.size(),
+                           {out.data(), static_cast<std::size_t>(out.size())});
+  std::vector<Eigen::MatrixXd> result;
+  result.reserve(states.size());
+  for (Eigen::Index r = 0; r < rows; ++r) {
+    result.push_back(assemble_regressor(states[static_cast<std::size_t>(r)], out.data() + r, states.size()));
+  }
+  return result;
 }
 
 Eigen::MatrixXd NumericModel::mass_matrix(const Eigen::VectorXd& q, const Eigen::VectorXd& standard) const {
@@ -141,6 +204,19 @@ double NumericModel::energy(const Eigen::VectorXd& q, const Eigen::VectorXd& qd,
   in.insert(in.end(), qd.data(), qd.data() + qd.size());
   in.insert(in.end(), standard.data(), standard.data() + standard.size());
   return energy_(in)[0];
+}
+
+std::vector<double> NumericModel::energy(std::span<const State> states, const Eigen::VectorXd& standard) const {
+  const auto rows = static_cast<Eigen::Index>(states.size());
+  const auto n = static_cast<Eigen::Index>(n_);
+  Eigen::MatrixXd in(rows, 2 * n + standard.size());
+  for (Eigen::Index r = 0; r < rows; ++r) {
+    const State& s = states[static_cast<std::size_t>(r)];
+    in.row(r) << s.q.transpose(), s.qd.transpose(), standard.transpose();
+  }
+  std::vector<double> out(states.size());
+  energy_.evaluate_rows({in.data(), static_cast<std::size_t>(in.size())}, states.size(), out);
+  return out;
 }
 
 State random_state(std::size_t n, std::uint64_t seed) {
