@@ -161,7 +161,7 @@ void CompiledFunction::run(double* registers, Rows points, double* outputs, std:
           }
         }
         break;
-      case Kind::Mul:
+      case Kind::Mul:  // the sum's shape, but the exponent is tested once per operand, not per row (4 %)
         if constexpr (kOnePoint) {
           double r = ins.value;
           for (std::uint32_t k = 0; k < ins.count; ++k) r *= power(operand(k)[0], ops[k].weight);
