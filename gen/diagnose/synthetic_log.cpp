@@ -4,6 +4,7 @@
 #include <cmath>
 #include <fstream>
 #include <functional>
+#include <memory>
 #include <numbers>
 #include <optional>
 #include <random>
@@ -77,6 +78,9 @@ Eigen::VectorXd with_payload(const pipeline::Derivation& d, Eigen::VectorXd stan
 struct Surface {
   Eigen::Vector3d point = Eigen::Vector3d::Zero();
   double height = 0, depth = 1;  // m: surface, and the deepest the point goes below it
+  // The payload link's geometry, compiled once: compiling it at every sample was most of a
+  // contact log's generation time.
+  std::shared_ptr<const ContactGeometry> geometry;
 };
 
 struct Sample {
@@ -96,7 +100,7 @@ Eigen::VectorXd link_torque(const pipeline::Derivation& d, const std::vector<Inj
   Eigen::VectorXd tau = rigid.tau - rigid.friction;
   for (const Injection& e : effects) {
     if (e.effect != "contact") continue;
-    const ContactGeometry::Basis b = ContactGeometry(d).at(q);
+    const ContactGeometry::Basis b = surface.geometry ? surface.geometry->at(q) : ContactGeometry(d).at(q);
     const double below = surface.height - ContactGeometry::height(b, surface.point);
     if (below > 0) tau += e.size * below / surface.depth * ContactGeometry::lever(b, surface.point);
   }
@@ -186,7 +190,7 @@ Sample sample(const pipeline::Derivation& d, const std::vector<Injection>& effec
   s.logged_qd += band.rate;
   s.logged_qdd += band.acceleration;
   motor += band.rate;
-  s.logged_tau = s.transmitted + model.evaluate({q, motor, motor, qdd}, loaded, false).friction;
+  s.logged_tau = s.transmitted + model.friction({q, motor, motor, qdd}, loaded);
   for (const Injection& e : effects) {
     const auto j = static_cast<Eigen::Index>(e.joint);
     if (e.effect == "coulomb_friction") s.logged_tau[j] += e.size * sign(motor[j]);
@@ -216,8 +220,11 @@ struct Scene {
     loaded = with_payload(d, nominal, payload);
     const bool touches =
         std::any_of(effects.begin(), effects.end(), [](const Injection& e) { return e.effect == "contact"; });
-    const ContactGeometry geometry(d);
-    if (touches && geometry.valid()) surface = place_surface(geometry, o);
+    auto geometry = std::make_shared<const ContactGeometry>(d);
+    if (touches && geometry->valid()) {
+      surface = place_surface(*geometry, o);
+      surface.geometry = std::move(geometry);
+    }
   }
   Surface place_surface(const ContactGeometry& geometry, const SyntheticOptions& o) const {
     const int samples = 2000;

@@ -43,6 +43,8 @@ class NumericModel {
   /// Only the regressor (does not depend on parameters).
   [[nodiscard]] Eigen::MatrixXd regressor(const State& s) const;
   [[nodiscard]] std::vector<Eigen::MatrixXd> regressor(std::span<const State> states) const;
+  /// The friction alone, FC sgn(qd) + FV v (no tape: a few multiplications).
+  [[nodiscard]] Eigen::VectorXd friction(const State& s, const Eigen::VectorXd& standard) const;
   /// H alone (cheaper), for positive-definiteness and energy checks.
   [[nodiscard]] Eigen::MatrixXd mass_matrix(const Eigen::VectorXd& q, const Eigen::VectorXd& standard) const;
   /// Kinetic + potential energy.
@@ -55,7 +57,6 @@ class NumericModel {
   [[nodiscard]] std::size_t parameter_count() const { return p_; }
 
  private:
-  [[nodiscard]] Eigen::VectorXd friction(const State& s, const Eigen::VectorXd& standard) const;
   // Evaluation / Y from the tapes' outputs: output k at values[k * stride].
   [[nodiscard]] Evaluation assemble(const State& s, const Eigen::VectorXd& standard, const double* values,
                                     std::size_t stride) const;
