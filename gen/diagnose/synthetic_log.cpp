@@ -89,14 +89,11 @@ struct Sample {
   Eigen::VectorXd transmitted;            // what a transmission between motor and link carries
 };
 
-// What the link itself needs at time t (its rigid bodies with the load, less the push of a table):
-// the torque a transmission between motor and link carries. The drive's friction acts on the
-// motor side, as in Spong's elastic joint.
-Eigen::VectorXd link_torque(const pipeline::Derivation& d, const std::vector<Injection>& effects, const Excitation& ex,
-                            const Eigen::VectorXd& loaded, const Surface& surface, double t) {
-  Eigen::VectorXd q, qd, qdd;
-  ex.at(t, q, qd, qdd);
-  const dyn::Evaluation rigid = d.numeric->evaluate({q, qd, qd, qdd}, loaded, false);
+// What the link itself needs (its rigid bodies with the load, less the push of a table): the
+// torque a transmission between motor and link carries. The drive's friction acts on the motor
+// side, as in Spong's elastic joint. `rigid` is the model's evaluation at the link's state.
+Eigen::VectorXd link_torque(const pipeline::Derivation& d, const std::vector<Injection>& effects,
+                            const dyn::Evaluation& rigid, const Eigen::VectorXd& q, const Surface& surface) {
   Eigen::VectorXd tau = rigid.tau - rigid.friction;
   for (const Injection& e : effects) {
     if (e.effect != "contact") continue;
@@ -105,6 +102,14 @@ Eigen::VectorXd link_torque(const pipeline::Derivation& d, const std::vector<Inj
     if (below > 0) tau += e.size * below / surface.depth * ContactGeometry::lever(b, surface.point);
   }
   return tau;
+}
+
+// The same at time t of the excitation.
+Eigen::VectorXd link_torque(const pipeline::Derivation& d, const std::vector<Injection>& effects, const Excitation& ex,
+                            const Eigen::VectorXd& loaded, const Surface& surface, double t) {
+  Eigen::VectorXd q, qd, qdd;
+  ex.at(t, q, qd, qdd);
+  return link_torque(d, effects, d.numeric->evaluate({q, qd, qd, qdd}, loaded, false), q, surface);
 }
 
 // How far an elastic joint's motor is ahead of its link (empty when no joint is elastic).
@@ -156,14 +161,79 @@ DeadBand dead_band(const std::vector<Injection>& effects, const Eigen::VectorXd&
   return out;
 }
 
+constexpr double kRateStep = 1e-3;  // s: a spring's deflection rate by central differences
+
+// The model's evaluations that a sample at time t needs: at the link's state with the nominal
+// parameters (the clean torque) and with the sample's own (the rigid torque the link needs), and
+// with a spring, the latter kRateStep before and after.
+struct SampleModel {
+  dyn::Evaluation clean, rigid, earlier, later;
+};
+
+bool elastic(const std::vector<Injection>& effects) {
+  return std::any_of(effects.begin(), effects.end(), [](const Injection& e) { return e.effect == "joint_elasticity"; });
+}
+
+// The SampleModels of samples at `times`, sample k with the parameters *params[k], computed
+// together (NumericModel's batch evaluation: the same numbers as one by one).
+std::vector<SampleModel> sample_models(const pipeline::Derivation& d, const std::vector<Injection>& effects,
+                                       const Excitation& ex, const Eigen::VectorXd& nominal,
+                                       const std::vector<double>& times,
+                                       const std::vector<const Eigen::VectorXd*>& params) {
+  const dyn::NumericModel& model = *d.numeric;
+  auto state_at = [&](double t) {
+    dyn::State s;
+    ex.at(t, s.q, s.qd, s.a);
+    s.v = s.qd;
+    return s;
+  };
+  std::vector<dyn::State> at;
+  at.reserve(times.size());
+  for (const double t : times) at.push_back(state_at(t));
+  std::vector<SampleModel> out(times.size());
+  const std::vector<dyn::Evaluation> clean = model.evaluate(at, nominal, false);
+  for (std::size_t k = 0; k < times.size(); ++k) out[k].clean = clean[k];
+  // The rigid torque with the samples' own parameters (the clean evaluation where they are the
+  // nominal ones), and a spring's neighbours, one batch per parameter set.
+  std::vector<const Eigen::VectorXd*> groups;
+  for (const Eigen::VectorXd* p : params) {
+    if (std::find(groups.begin(), groups.end(), p) == groups.end()) groups.push_back(p);
+  }
+  const bool spring = elastic(effects);
+  for (const Eigen::VectorXd* group : groups) {
+    const bool clean_is_rigid = group == &nominal;
+    std::vector<std::size_t> which;
+    std::vector<dyn::State> states;
+    for (std::size_t k = 0; k < times.size(); ++k) {
+      if (params[k] != group) continue;
+      which.push_back(k);
+      if (!clean_is_rigid) states.push_back(at[k]);
+      if (spring) {
+        states.push_back(state_at(times[k] - kRateStep));
+        states.push_back(state_at(times[k] + kRateStep));
+      }
+    }
+    const std::vector<dyn::Evaluation> e = model.evaluate(states, *group, false);
+    std::size_t next = 0;
+    for (const std::size_t k : which) {
+      out[k].rigid = clean_is_rigid ? out[k].clean : e[next++];
+      if (spring) {
+        out[k].earlier = e[next++];
+        out[k].later = e[next++];
+      }
+    }
+  }
+  return out;
+}
+
 Sample sample(const pipeline::Derivation& d, const std::vector<Injection>& effects, const Excitation& ex,
-              const Eigen::VectorXd& nominal, const Eigen::VectorXd& loaded, const Surface& surface, double t) {
+              const Eigen::VectorXd& loaded, const Surface& surface, double t, const SampleModel& m) {
   Eigen::VectorXd q, qd, qdd;
   ex.at(t, q, qd, qdd);
   const dyn::NumericModel& model = *d.numeric;
   Sample s;
-  s.clean_tau = model.evaluate({q, qd, qd, qdd}, nominal, false).tau;
-  s.transmitted = link_torque(d, effects, ex, loaded, surface, t);
+  s.clean_tau = m.clean.tau;
+  s.transmitted = link_torque(d, effects, m.rigid, q, surface);
   s.logged_q = q;
   s.logged_qd = qd;
   s.logged_qdd = qdd;
@@ -176,9 +246,12 @@ Sample sample(const pipeline::Derivation& d, const std::vector<Injection>& effec
   const Eigen::VectorXd bent = deflection(effects, s.transmitted);
   Eigen::VectorXd motor = qd;
   if (bent.size() > 0) {
-    constexpr double h = 1e-3;  // s
-    const Eigen::VectorXd later = deflection(effects, link_torque(d, effects, ex, loaded, surface, t + h)),
-                          earlier = deflection(effects, link_torque(d, effects, ex, loaded, surface, t - h));
+    constexpr double h = kRateStep;
+    Eigen::VectorXd q_later, q_earlier, unused_rate, unused_acceleration;
+    ex.at(t + h, q_later, unused_rate, unused_acceleration);
+    ex.at(t - h, q_earlier, unused_rate, unused_acceleration);
+    const Eigen::VectorXd later = deflection(effects, link_torque(d, effects, m.later, q_later, surface)),
+                          earlier = deflection(effects, link_torque(d, effects, m.earlier, q_earlier, surface));
     s.logged_q += bent;
     s.logged_qd += (later - earlier) / (2 * h);
     s.logged_qdd += (later - 2 * bent + earlier) / (h * h);
@@ -253,6 +326,24 @@ struct Scene {
   Surface surface;
 };
 
+// The samples at `times` (with the load where it is carried), their model evaluations made
+// together (sample_models).
+std::vector<Sample> samples_at(const pipeline::Derivation& d, const std::vector<Injection>& effects, const Scene& scene,
+                               const SyntheticOptions& o, const std::vector<double>& times) {
+  std::vector<const Eigen::VectorXd*> params;
+  params.reserve(times.size());
+  for (const double t : times) params.push_back(carried(o, t) ? &scene.loaded : &scene.nominal);
+  const std::vector<SampleModel> models = sample_models(d, effects, scene.excitation, scene.nominal, times, params);
+  std::vector<Sample> out;
+  out.reserve(times.size());
+  for (std::size_t k = 0; k < times.size(); ++k) {
+    out.push_back(sample(d, effects, scene.excitation, *params[k], scene.surface, times[k], models[k]));
+  }
+  return out;
+}
+
+constexpr std::size_t kSamplesPerBatch = 512;
+
 }  // namespace
 
 std::vector<std::string> injectable_effects() {
@@ -269,9 +360,7 @@ EffectSize effect_size(const pipeline::Derivation& d, const std::vector<Injectio
                        const SyntheticOptions& o) {
   const Scene scene(d, effects, o);
   const Eigen::Index n = scene.n;
-  const Excitation& ex = scene.excitation;
   const Eigen::VectorXd& nominal = scene.nominal;
-  const Eigen::VectorXd& loaded = scene.loaded;
   // As the diagnosis sees them: through its zero-phase low-pass (a Stribeck pulse at a reversal
   // and a Coulomb step lose different shares of their RMS to it). Every 20 ms, or ten times
   // across a dead band's crossing, which a coarser grid samples as a spike or misses.
@@ -279,15 +368,23 @@ EffectSize effect_size(const pipeline::Derivation& d, const std::vector<Injectio
       std::any_of(effects.begin(), effects.end(), [](const Injection& e) { return e.effect == "backlash"; });
   const int samples = crossing ? static_cast<int>(10 * o.duration / kCrossing) : 2000;
   Eigen::MatrixXd clean(samples, n), change(samples, n), transmitted(samples, n);
-  for (int i = 0; i < samples; ++i) {
-    const double t = o.duration * i / samples;
-    const Sample s = sample(d, effects, ex, nominal, carried(o, t) ? loaded : nominal, scene.surface, t);
+  for (int first = 0; first < samples; first += static_cast<int>(kSamplesPerBatch)) {
+    std::vector<double> times;
+    for (int i = first; i < std::min(samples, first + static_cast<int>(kSamplesPerBatch)); ++i) {
+      times.push_back(o.duration * i / samples);
+    }
+    const std::vector<Sample> batch = samples_at(d, effects, scene, o, times);
     // What the diagnosis sees: logged torque minus the model at the logged positions and their rates.
-    const Eigen::VectorXd model_at_logged =
-        d.numeric->evaluate({s.logged_q, s.logged_qd, s.logged_qd, s.logged_qdd}, nominal, false).tau;
-    clean.row(i) = s.clean_tau.transpose();
-    transmitted.row(i) = s.transmitted.transpose();
-    change.row(i) = (s.logged_tau - model_at_logged).transpose();
+    std::vector<dyn::State> logged;
+    logged.reserve(batch.size());
+    for (const Sample& s : batch) logged.push_back({s.logged_q, s.logged_qd, s.logged_qd, s.logged_qdd});
+    const std::vector<dyn::Evaluation> model_at_logged = d.numeric->evaluate(logged, nominal, false);
+    for (std::size_t k = 0; k < batch.size(); ++k) {
+      const Eigen::Index i = first + static_cast<Eigen::Index>(k);
+      clean.row(i) = batch[k].clean_tau.transpose();
+      transmitted.row(i) = batch[k].transmitted.transpose();
+      change.row(i) = (batch[k].logged_tau - model_at_logged[k].tau).transpose();
+    }
   }
   const double rate = samples / o.duration, cutoff = std::min(rate / 8, kDiagnosisCutoff);
   EffectSize out{Eigen::VectorXd::Zero(n), Eigen::VectorXd::Zero(n), minority_sign_share(transmitted)};
@@ -304,9 +401,6 @@ void write_synthetic_log(const pipeline::Derivation& d, const std::vector<Inject
                          const SyntheticOptions& o, const std::filesystem::path& path) {
   const Scene scene(d, effects, o);
   const Eigen::Index n = scene.n;
-  const Excitation& ex = scene.excitation;
-  const Eigen::VectorXd& nominal = scene.nominal;
-  const Eigen::VectorXd& loaded = scene.loaded;
   std::mt19937 random(o.seed + 7919);
   std::normal_distribution<double> noise(0.0, o.torque_noise);
   std::ofstream out(path);
@@ -317,15 +411,21 @@ void write_synthetic_log(const pipeline::Derivation& d, const std::vector<Inject
   out << "\n";
   out.precision(10);
   const auto samples = static_cast<long>(o.duration * o.rate);
-  for (long i = 0; i < samples; ++i) {
-    const double t = static_cast<double>(i) / o.rate;
-    const Sample s = sample(d, effects, ex, nominal, carried(o, t) ? loaded : nominal, scene.surface, t);
-    out << t;
-    for (Eigen::Index k = 0; k < n; ++k) {
-      out << ',' << (o.quantum > 0 ? o.quantum * std::round(s.logged_q[k] / o.quantum) : s.logged_q[k]);
+  for (long first = 0; first < samples; first += static_cast<long>(kSamplesPerBatch)) {
+    std::vector<double> times;
+    for (long i = first; i < std::min(samples, first + static_cast<long>(kSamplesPerBatch)); ++i) {
+      times.push_back(static_cast<double>(i) / o.rate);
     }
-    for (Eigen::Index k = 0; k < n; ++k) out << ',' << s.logged_tau[k] + noise(random);
-    out << "\n";
+    const std::vector<Sample> batch = samples_at(d, effects, scene, o, times);
+    for (std::size_t k = 0; k < batch.size(); ++k) {
+      const Sample& s = batch[k];
+      out << times[k];
+      for (Eigen::Index j = 0; j < n; ++j) {
+        out << ',' << (o.quantum > 0 ? o.quantum * std::round(s.logged_q[j] / o.quantum) : s.logged_q[j]);
+      }
+      for (Eigen::Index j = 0; j < n; ++j) out << ',' << s.logged_tau[j] + noise(random);
+      out << "\n";
+    }
   }
   if (!out) throw std::runtime_error(path.string() + ": cannot write");
 }
