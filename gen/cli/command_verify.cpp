@@ -2,6 +2,7 @@
 #include <fmt/core.h>
 
 #include <Eigen/Dense>
+#include <algorithm>
 #include <chrono>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -114,13 +115,23 @@ int run_verify(const VerifyOptions& o) {
   double worst_relation = 0.0;
   double min_eigen = 1e300;
   int not_pd = 0;
-  for (int k = 0; k < o.samples; ++k) {
-    const dyn::State s = dyn::random_state(n, 5000U + static_cast<std::uint64_t>(k));
-    const dyn::Evaluation e = d->numeric->evaluate(s, nominal);
-    std::vector<double> in(s.q.data(), s.q.data() + N);
-    in.insert(in.end(), s.qd.data(), s.qd.data() + N);
-    in.insert(in.end(), nominal.data(), nominal.data() + nominal.size());
-    const std::vector<double> hd = hdot_fn(in);
+  // All the states at once (the tapes over blocks of states; the same numbers as one by one).
+  std::vector<dyn::State> states;
+  states.reserve(static_cast<std::size_t>(std::max(0, o.samples)));
+  for (int k = 0; k < o.samples; ++k) states.push_back(dyn::random_state(n, 5000U + static_cast<std::uint64_t>(k)));
+  const std::vector<dyn::Evaluation> evaluations = d->numeric->evaluate(states, nominal);
+  const auto rows = static_cast<Eigen::Index>(states.size());
+  Eigen::MatrixXd hdot_in(rows, 2 * N + nominal.size());  // one state per row: q, qd, parameters
+  for (Eigen::Index k = 0; k < rows; ++k) {
+    const dyn::State& s = states[static_cast<std::size_t>(k)];
+    hdot_in.row(k) << s.q.transpose(), s.qd.transpose(), nominal.transpose();
+  }
+  Eigen::MatrixXd hdot_out(rows, N * N);  // row k: Hdot at state k, row-major
+  hdot_fn.evaluate_rows({hdot_in.data(), static_cast<std::size_t>(hdot_in.size())}, states.size(),
+                        {hdot_out.data(), static_cast<std::size_t>(hdot_out.size())});
+  for (Eigen::Index k = 0; k < rows; ++k) {
+    const dyn::Evaluation& e = evaluations[static_cast<std::size_t>(k)];
+    const Eigen::RowVectorXd hd = hdot_out.row(k);
     const Eigen::MatrixXd HdotN = Eigen::Map<const RowMajor>(hd.data(), N, N);
     const Eigen::MatrixXd Nm = HdotN - 2.0 * e.C;
     const double scale = std::max(1.0, HdotN.cwiseAbs().maxCoeff());
