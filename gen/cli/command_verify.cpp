@@ -121,14 +121,8 @@ int run_verify(const VerifyOptions& o) {
   for (int k = 0; k < o.samples; ++k) states.push_back(dyn::random_state(n, 5000U + static_cast<std::uint64_t>(k)));
   const std::vector<dyn::Evaluation> evaluations = d->numeric->evaluate(states, nominal);
   const auto rows = static_cast<Eigen::Index>(states.size());
-  Eigen::MatrixXd hdot_in(rows, 2 * N + nominal.size());  // one state per row: q, qd, parameters
-  for (Eigen::Index k = 0; k < rows; ++k) {
-    const dyn::State& s = states[static_cast<std::size_t>(k)];
-    hdot_in.row(k) << s.q.transpose(), s.qd.transpose(), nominal.transpose();
-  }
-  Eigen::MatrixXd hdot_out(rows, N * N);  // row k: Hdot at state k, row-major
-  hdot_fn.evaluate_rows({hdot_in.data(), static_cast<std::size_t>(hdot_in.size())}, states.size(),
-                        {hdot_out.data(), static_cast<std::size_t>(hdot_out.size())});
+  // Row k: Hdot at state k, row-major.
+  const Eigen::MatrixXd hdot_out = dyn::evaluate_rows(hdot_fn, dyn::state_rows(states, nominal));
   for (Eigen::Index k = 0; k < rows; ++k) {
     const dyn::Evaluation& e = evaluations[static_cast<std::size_t>(k)];
     const Eigen::RowVectorXd hd = hdot_out.row(k);

@@ -48,9 +48,7 @@ ContactGeometry::Frame ContactGeometry::frame(const Eigen::VectorXd& q) const { 
 
 std::vector<ContactGeometry::Frame> ContactGeometry::frames(const Eigen::MatrixXd& q) const {
   const Eigen::Index n = q.cols(), rows = q.rows();
-  Eigen::MatrixXd values(rows, static_cast<Eigen::Index>(kinematics_->output_count()));
-  kinematics_->evaluate_rows({q.data(), static_cast<std::size_t>(q.size())}, static_cast<std::size_t>(rows),
-                             {values.data(), static_cast<std::size_t>(values.size())});
+  const Eigen::MatrixXd values = dyn::evaluate_rows(*kinematics_, q);
   // The outputs in their order: rotation (row-major), origin, then per coordinate linear and angular.
   std::vector<Frame> out;
   out.reserve(static_cast<std::size_t>(rows));

@@ -681,10 +681,8 @@ std::map<int, double> fitted_gains(const CrossValidation& cv, const std::vector<
 // column of the joint fit: g for a per-joint column of a joint with a fitted gain, else 1.
 Eigen::VectorXd applied_torque_scale(const CrossValidation& cv, const std::vector<Effect>& effects) {
   const std::map<int, double> gain_of = fitted_gains(cv, effects);
+  Eigen::VectorXd scale = Eigen::VectorXd::Ones(cv.theta.size());
   Eigen::Index at = 0;
-  for (const Effect& e : effects) at += e.columns.cols();
-  Eigen::VectorXd scale = Eigen::VectorXd::Ones(at);
-  at = 0;
   for (const Effect& e : effects) {
     for (Eigen::Index k = 0; k < e.columns.cols() && e.family != "torque_gain"; ++k) {
       const auto gain = gain_of.find(e.joint_of[static_cast<std::size_t>(k)]);
@@ -704,24 +702,19 @@ Eigen::VectorXd applied_torque_scale(const CrossValidation& cv, const std::vecto
 template <class Fit>
 void arm_rows_in_logged_torque(std::vector<Effect>& effects, CrossValidation& cv, const Fit& fit, Eigen::Index n) {
   std::vector<std::size_t> arm;
-  bool any_gain = false;
   for (std::size_t k = 0; k < effects.size(); ++k) {
-    any_gain = any_gain || effects[k].family == "torque_gain";
     if (!per_joint(effects[k])) arm.push_back(k);
   }
-  if (arm.empty() || !any_gain) return;
+  if (arm.empty() || fitted_gains(cv, effects).empty()) return;
   std::vector<Eigen::MatrixXd> as_applied;
   as_applied.reserve(arm.size());
   for (const std::size_t k : arm) as_applied.push_back(effects[k].columns);
   for (int pass = 0; pass < 2; ++pass) {
-    const std::map<int, double> gain_of = fitted_gains(cv, effects);
+    Eigen::VectorXd gain_of = Eigen::VectorXd::Ones(n);  // per joint: its gain, or 1
+    for (const auto& [joint, gain] : fitted_gains(cv, effects)) gain_of[joint] = gain;
+    const Eigen::ArrayXd row_gain = gain_of.replicate(as_applied.front().rows() / n, 1).array();
     for (std::size_t i = 0; i < arm.size(); ++i) {
-      Eigen::MatrixXd logged = as_applied[i];
-      for (Eigen::Index r = 0; r < logged.rows(); ++r) {
-        const auto gain = gain_of.find(static_cast<int>(r % n));
-        if (gain != gain_of.end()) logged.row(r) /= gain->second;
-      }
-      effects[arm[i]].columns = std::move(logged);
+      effects[arm[i]].columns = (as_applied[i].array().colwise() / row_gain).matrix();
     }
     cv = fit();
   }

@@ -123,26 +123,13 @@ Evaluation NumericModel::evaluate(const State& s, const Eigen::VectorXd& standar
 
 std::vector<Evaluation> NumericModel::evaluate(std::span<const State> states, const Eigen::VectorXd& standard,
                                                bool with_regressor) const {
-  const auto rows = static_cast<Eigen::Index>(states.size());
-  const auto n = static_cast<Eigen::Index>(n_);
-  // One state per row, inputs q, qd, standard in columns (column-major: evaluate_rows' layout).
-  Eigen::MatrixXd in(rows, 2 * n + standard.size());
-  for (Eigen::Index r = 0; r < rows; ++r) {
-    const State& s = states[static_cast<std::size_t>(r)];
-    in.row(r).head(n) = s.q.transpose();
-    in.row(r).segment(n, n) = s.qd.transpose();
-    in.row(r).tail(standard.size()) = standard.transpose();
-  }
-  Eigen::MatrixXd out(rows, static_cast<Eigen::Index>(dynamics_.output_count()));
-  dynamics_.evaluate_rows({in.data(), static_cast<std::size_t>(in.size())}, states.size(),
-                          {out.data(), static_cast<std::size_t>(out.size())});
+  const Eigen::MatrixXd out = evaluate_rows(dynamics_, state_rows(states, standard));
   std::vector<Eigen::MatrixXd> ys;
   if (with_regressor) ys = regressor(states);
   std::vector<Evaluation> result;
   result.reserve(states.size());
-  for (Eigen::Index r = 0; r < rows; ++r) {
-    const auto i = static_cast<std::size_t>(r);
-    result.push_back(assemble(states[i], standard, out.data() + r, states.size()));
+  for (std::size_t i = 0; i < states.size(); ++i) {
+    result.push_back(assemble(states[i], standard, out.data() + i, states.size()));
     if (with_regressor) result.back().Y = std::move(ys[i]);
   }
   return result;
@@ -172,20 +159,17 @@ Eigen::MatrixXd NumericModel::regressor(const State& s) const {
 }
 
 std::vector<Eigen::MatrixXd> NumericModel::regressor(std::span<const State> states) const {
-  const auto rows = static_cast<Eigen::Index>(states.size());
   const auto n = static_cast<Eigen::Index>(n_);
-  Eigen::MatrixXd in(rows, 4 * n);
-  for (Eigen::Index r = 0; r < rows; ++r) {
+  Eigen::MatrixXd in(static_cast<Eigen::Index>(states.size()), 4 * n);
+  for (Eigen::Index r = 0; r < in.rows(); ++r) {
     const State& s = states[static_cast<std::size_t>(r)];
     in.row(r) << s.q.transpose(), s.qd.transpose(), s.v.transpose(), s.a.transpose();
   }
-  Eigen::MatrixXd out(rows, static_cast<Eigen::Index>(regressor_.output_count()));
-  regressor_.evaluate_rows({in.data(), static_cast<std::size_t>(in.size())}, states.size(),
-                           {out.data(), static_cast<std::size_t>(out.size())});
+  const Eigen::MatrixXd out = evaluate_rows(regressor_, in);
   std::vector<Eigen::MatrixXd> result;
   result.reserve(states.size());
-  for (Eigen::Index r = 0; r < rows; ++r) {
-    result.push_back(assemble_regressor(states[static_cast<std::size_t>(r)], out.data() + r, states.size()));
+  for (std::size_t i = 0; i < states.size(); ++i) {
+    result.push_back(assemble_regressor(states[i], out.data() + i, states.size()));
   }
   return result;
 }
@@ -207,15 +191,24 @@ double NumericModel::energy(const Eigen::VectorXd& q, const Eigen::VectorXd& qd,
 }
 
 std::vector<double> NumericModel::energy(std::span<const State> states, const Eigen::VectorXd& standard) const {
-  const auto rows = static_cast<Eigen::Index>(states.size());
-  const auto n = static_cast<Eigen::Index>(n_);
-  Eigen::MatrixXd in(rows, 2 * n + standard.size());
-  for (Eigen::Index r = 0; r < rows; ++r) {
+  const Eigen::MatrixXd out = evaluate_rows(energy_, state_rows(states, standard));
+  return {out.data(), out.data() + out.size()};
+}
+
+Eigen::MatrixXd state_rows(std::span<const State> states, const Eigen::VectorXd& parameters) {
+  const Eigen::Index n = states.empty() ? 0 : states.front().q.size();
+  Eigen::MatrixXd in(static_cast<Eigen::Index>(states.size()), 2 * n + parameters.size());
+  for (Eigen::Index r = 0; r < in.rows(); ++r) {
     const State& s = states[static_cast<std::size_t>(r)];
-    in.row(r) << s.q.transpose(), s.qd.transpose(), standard.transpose();
+    in.row(r) << s.q.transpose(), s.qd.transpose(), parameters.transpose();
   }
-  std::vector<double> out(states.size());
-  energy_.evaluate_rows({in.data(), static_cast<std::size_t>(in.size())}, states.size(), out);
+  return in;
+}
+
+Eigen::MatrixXd evaluate_rows(const sym::CompiledFunction& f, const Eigen::MatrixXd& inputs) {
+  Eigen::MatrixXd out(inputs.rows(), static_cast<Eigen::Index>(f.output_count()));
+  f.evaluate_rows({inputs.data(), static_cast<std::size_t>(inputs.size())}, static_cast<std::size_t>(inputs.rows()),
+                  {out.data(), static_cast<std::size_t>(out.size())});
   return out;
 }
 

@@ -74,6 +74,13 @@ class NumericModel {
   std::vector<sym::Expr> user_symbols_;
 };
 
+/// A tape at many points: row r of `inputs` holds point r's inputs (in the tape's order), row r
+/// of the result its outputs (CompiledFunction::evaluate_rows on column-major matrices).
+Eigen::MatrixXd evaluate_rows(const sym::CompiledFunction& f, const Eigen::MatrixXd& inputs);
+/// One state per row: its q, its qd, then `parameters` (the inputs of tapes in q, qd and the
+/// standard parameters: the dynamics, the energy, Hdot).
+Eigen::MatrixXd state_rows(std::span<const State> states, const Eigen::VectorXd& parameters);
+
 /// Uniform random states (angles in [-pi, pi], rates in [-2, 2]) from a seed: reproducible.
 State random_state(std::size_t n, std::uint64_t seed);
 
