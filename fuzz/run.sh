@@ -4,8 +4,8 @@
 #
 # Usage: fuzz/run.sh [--seconds N] [--jobs N] [--no-build] [--crashes] [TARGET...]
 #   --seconds N  fuzzing time per target (default $FUZZ_SECONDS or 60)
-#   --runs N     instead of a time, N inputs per target from a fixed seed (-seed=1): the same
-#                inputs on every run, so a CI failure is a real finding that reproduces, not luck
+#   --runs N     instead of a time, N inputs per target from a fixed seed (-seed=1): a bounded,
+#                mostly repeatable run (node addresses can steer coverage; see fuzz/README.md)
 #   --jobs N     build parallelism (default 2)
 #   --no-build   use the existing build/asan/fuzz binaries
 #   --crashes    instead of fuzzing, replay the reproducers in fuzz/crashes/ and fail if any

@@ -131,6 +131,14 @@ TEST(SymParsePrint, FuzzReproducers) {
       "cos(pi/ +03-1.*ata-an2t1)",
       "cos(pi/3 - x)",
       "(x^2)^33",
+      // A coefficient of -2^63 (an int64 but outside Rational's symmetric range) used to be
+      // built, and printing it threw (the printer takes the magnitude): now it is an overflow.
+      "(-9223372036854775807-1)*x",
+      "-4611686018427387904*2*x",
+      "-4611686018427387904*2",
+      "-9223372036854775807*x-x",
+      "(-1-9223372036854775807)/3*x",
+      "-9223372036854775807*x",
   };
   for (const std::string& text : inputs) {
     ParseResult r;
@@ -148,6 +156,8 @@ TEST(SymParsePrint, FuzzReproducers) {
     for (const Expr s : free_symbols(*r.expr)) EXPECT_NO_THROW((void)diff(*r.expr, s)) << text;
   }
   const Expr x = symbol("x");
+  EXPECT_FALSE(parse("-4611686018427387904*2").ok());
+  EXPECT_EQ(to_string(parse_or_throw("-9223372036854775807*x")), "-9223372036854775807*x");
   EXPECT_EQ(parse_or_throw("(x^2)^33"), pow(x, 66));
   EXPECT_EQ(parse_or_throw("cos(pi/3 - x)"), parse_or_throw("cos(x - pi/3)"));
   // 64^5 = 2^30 still fits in int: the derivative keeps the exact exponent.

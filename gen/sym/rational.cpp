@@ -1,7 +1,5 @@
 #include "sym/rational.hpp"
 
-#include <limits>
-
 namespace dyncc::sym {
 namespace {
 
@@ -16,9 +14,8 @@ Int128 gcd128(Int128 a, Int128 b) {
   return a;
 }
 
-bool fits64(Int128 v) {
-  return v >= std::numeric_limits<std::int64_t>::min() && v <= std::numeric_limits<std::int64_t>::max();
-}
+// The symmetric range (see rational.hpp): -2^63 does not fit.
+bool fits64(Int128 v) { return v >= Rational::kMinNumerator && v <= Rational::kMaxNumerator; }
 
 }  // namespace
 
@@ -42,6 +39,7 @@ Rational Rational::from_wide(Int128 n, Int128 d) {
   return r;
 }
 
+// The integer fast paths may produce -2^63 without a built-in overflow; Rational(s) rejects it.
 Rational operator+(const Rational& a, const Rational& b) {
   if (a.den_ == 1 && b.den_ == 1) {
     std::int64_t s = 0;
@@ -51,8 +49,6 @@ Rational operator+(const Rational& a, const Rational& b) {
                              static_cast<Int128>(a.den_) * b.den_);
 }
 
-// Computed directly rather than as a + (-b): -b overflows for b = INT64_MIN even when a - b
-// fits (e.g. -1 - INT64_MIN == INT64_MAX).
 Rational operator-(const Rational& a, const Rational& b) {
   if (a.den_ == 1 && b.den_ == 1) {
     std::int64_t s = 0;
@@ -75,8 +71,6 @@ Rational operator/(const Rational& a, const Rational& b) {
 }
 
 Rational Rational::operator-() const {
-  if (num_ == std::numeric_limits<std::int64_t>::min())
-    throw RationalOverflow("exact rational coefficient overflows 64 bits");
   Rational r = *this;
   r.num_ = -num_;
   return r;

@@ -3,6 +3,12 @@
 // Why int64 and not arbitrary precision: coefficients in robot dynamics stay small (D-H constants
 // are kept as named symbols until the end), so machine integers are fast and enough. Every
 // operation is overflow-checked and throws RationalOverflow rather than returning a wrong value.
+//
+// The range is symmetric: numerators lie in [-(2^63 - 1), 2^63 - 1], so -2^63 is out of range.
+// Negation and abs() are then total, and every value prints as a literal that reads back (the
+// parser reads "-9223372036854775808" as the negation of 2^63, which does not fit); with -2^63
+// allowed, a product whose coefficient was -2^63 could not be printed at all (the printer takes
+// the magnitude), found by fuzz_expression.
 #pragma once
 
 #include <compare>
@@ -22,8 +28,14 @@ struct RationalOverflow : std::overflow_error {
 
 class Rational {
  public:
+  static constexpr std::int64_t kMaxNumerator = INT64_MAX;
+  static constexpr std::int64_t kMinNumerator = -INT64_MAX;
+
   constexpr Rational() = default;
-  constexpr Rational(std::int64_t n) : num_(n) {}  // NOLINT(google-explicit-constructor)
+  // Throws RationalOverflow for n = -2^63 (outside the symmetric range).
+  constexpr Rational(std::int64_t n) : num_(n) {  // NOLINT(google-explicit-constructor)
+    if (n < kMinNumerator) throw RationalOverflow("exact rational coefficient overflows 64 bits");
+  }
   Rational(std::int64_t n, std::int64_t d);
 
   [[nodiscard]] std::int64_t num() const { return num_; }
@@ -47,7 +59,7 @@ class Rational {
   friend Rational operator-(const Rational& a, const Rational& b);
   friend Rational operator*(const Rational& a, const Rational& b);
   friend Rational operator/(const Rational& a, const Rational& b);
-  Rational operator-() const;
+  Rational operator-() const;  // never overflows: the range is symmetric
   Rational& operator+=(const Rational& b) { return *this = *this + b; }
   Rational& operator*=(const Rational& b) { return *this = *this * b; }
   [[nodiscard]] Rational pow(int exponent) const;
