@@ -307,5 +307,17 @@ TEST(BlindBenchCase, KraftPayloadBesideATorqueGainOfItsJointIsReadInAppliedTorqu
               {{"mass", payload.size, 0.01 * payload.size}, {"gain2", gain.size, 0.1 * (gain.size - 1)}});
 }
 
+// Case 59 of the blind seed 139 (Panda, 1 kHz): a torque gain of 1.22 on joint 7 beside a 14 ms
+// delay. Joint 7's torque is mostly the drive's friction, so at the first step a Coulomb friction
+// of joint 7 ties with the gain and led ("coulomb_friction or torque_gain"); after the delay, the
+// gain's share of the rest of the torque read as "payload or torque_gain" on joint 7. The gain
+// alone explains both steps as well as the two together, so it is the one effect named.
+TEST(BlindBenchCase, PandaGainThatTwoStepsNameIsOneEffect) {
+  const Injection gain{.effect = "torque_gain", .joint = 6, .size = 1.22};
+  const Injection delay{.effect = "sensor_delay", .joint = 6, .size = 0.0142503351816462};
+  expect_case(diagnosed("panda", {gain, delay}, 1000, 139U * 1000U + 59U), "torque_gain", {7},
+              {{"gain7", gain.size, 0.1 * (gain.size - 1.0)}, {"delay", delay.size, 0.001}});
+}
+
 }  // namespace
 }  // namespace dyncc::test

@@ -463,7 +463,8 @@ Eigen::Index columns_on(const Effect& e, const std::vector<int>& joints) {
 // of the chosen ones (the same explanation) nor more than twice as many.
 template <typename Usable>
 std::string alternatives(const Candidate& chosen, const Candidate& top, const std::vector<const Candidate*>& order,
-                         Usable usable, Eigen::Index offset, const Eigen::VectorXd& torque_rms) {
+                         Usable usable, Eigen::Index offset, const Eigen::VectorXd& torque_rms,
+                         std::vector<const Candidate*>& named) {
   std::string out;
   std::vector<int> joints;  // the chosen per-joint effect's joints (0-based)
   if (per_joint(*chosen.effect)) joints = chosen.effect->joint_of;
@@ -484,6 +485,7 @@ std::string alternatives(const Candidate& chosen, const Candidate& top, const st
       continue;
     }
     out += " or " + c->effect->name;
+    named.push_back(c);
   }
   return out;
 }
@@ -828,6 +830,69 @@ void drop_arm_effects_the_others_explain(Diagnosis& out, const Eigen::VectorXd& 
   drop_gone(out, gone, parts, weight, n);
 }
 
+// Whether the selected step's name ("A or B or C") names the effect family `family`.
+bool names(const RankedEffect& step, const std::string& family) {
+  std::size_t begin = 0;
+  while (true) {
+    const std::size_t end = step.effect.find(" or ", begin);
+    if (step.effect.substr(begin, end == std::string::npos ? std::string::npos : end - begin) == family) return true;
+    if (end == std::string::npos) return false;
+    begin = end + 4;
+  }
+}
+
+// One per-joint effect that two steps both name as an alternative ("coulomb_friction or torque_gain"
+// on joint 7, then "payload or torque_gain" on joint 7) and that alone, on the first step's joints,
+// explains what the two steps' effects do together (the joint fit not clearly worse) is the
+// explanation of both: it takes the first step's place and the later step goes. Each step judged
+// alone cannot see it: a gain of 1.22 on the Panda's joint 7, whose torque is mostly the drive's
+// friction, ties with a Coulomb friction there, and what is left (the gain's share of the rest of
+// the torque) then reads as a payload (blind seed 139 case 59).
+void one_effect_for_two_steps(Diagnosis& out, const std::vector<std::vector<Effect>>& step_alternatives,
+                              const Eigen::VectorXd& r0, const Eigen::VectorXd& weight, Eigen::Index n,
+                              std::vector<Eigen::VectorXd>& parts) {
+  const std::size_t steps = out.accepted_effects.size();
+  if (steps < 2 || step_alternatives.size() != steps) return;
+  Candidate all;
+  bool fitted = false;
+  for (std::size_t i = 0; i < steps; ++i) {
+    for (const Effect& alternative : step_alternatives[i]) {
+      for (std::size_t k = i + 1; k < steps; ++k) {
+        const RankedEffect& later = out.selected[k];
+        const std::vector<int>& first_joints = out.selected[i].joints;
+        const bool within = std::all_of(later.joints.begin(), later.joints.end(), [&](int j) {
+          return std::find(first_joints.begin(), first_joints.end(), j) != first_joints.end();
+        });
+        if (!within || !names(later, alternative.family) || alternative.columns.cols() == 0) continue;
+        if (!fitted) {
+          all.cv = fit_together(out.accepted_effects, r0, weight, out.away, n);
+          set_shrink(all, r0, weight, n);
+          fitted = true;
+        }
+        std::vector<Effect> merged = out.accepted_effects;
+        merged[i] = alternative;
+        merged.erase(merged.begin() + static_cast<std::ptrdiff_t>(k));
+        Candidate one;
+        one.cv = fit_together(merged, r0, weight, out.away, n);
+        set_shrink(one, r0, weight, n);
+        if (clearly_more(all, one) || one.low <= 0.0) continue;
+        Eigen::Index at = 0;
+        for (std::size_t e = 0; e < i; ++e) at += merged[e].columns.cols();
+        parts[i] = alternative.columns * one.cv.theta.segment(at, alternative.columns.cols());
+        out.accepted_effects[i] = alternative;
+        out.selected[i].effect = alternative.name;
+        out.selected[i].family = alternative.family;
+        out.selected[i].columns = static_cast<std::size_t>(alternative.columns.cols());
+        out.selected[i].shrink_away_from_zero.reset();
+        std::vector<bool> gone(steps, false);
+        gone[k] = true;
+        drop_gone(out, gone, parts, weight, n);
+        return;  // one merge: the steps' alternatives are indexed by the order before it
+      }
+    }
+  }
+}
+
 // Once every effect is in: all of them fitted together, each per-joint effect narrowed once more
 // to the joints its own columns still carry (an offset of joint 3 that only stood in for a gain
 // of joint 5 until the gain came in is dropped), and every effect's parameters read from that
@@ -1119,8 +1184,9 @@ Diagnosis diagnose(const Dataset& d, const pipeline::Derivation& derivation) {
   Eigen::MatrixXd accepted(r0.size(), 0);
   Eigen::VectorXd baseline = r0;  // held-out residual of the model so far
   std::vector<std::string> taken;
-  std::vector<std::string> fitted;          // the per-joint parameters accepted so far ("fc2", ...)
-  std::vector<Eigen::VectorXd> step_parts;  // what each accepted effect fitted at its step (stacked rows)
+  std::vector<std::string> fitted;                     // the per-joint parameters accepted so far ("fc2", ...)
+  std::vector<Eigen::VectorXd> step_parts;             // what each accepted effect fitted at its step (stacked rows)
+  std::vector<std::vector<Effect>> step_alternatives;  // each step's per-joint "or" effects, on its joints
   for (int step = 0; step < kMaxEffects; ++step) {
     const Eigen::VectorXd before = joint_rms(baseline, n);
     const StepState step_state{accepted, r0, baseline, weight, away, before, out.gap, derivation};
@@ -1244,7 +1310,14 @@ Diagnosis diagnose(const Dataset& d, const pipeline::Derivation& derivation) {
     }
     if (chosen == nullptr) break;
     r.accepted = true;
-    r.effect += alternatives(*chosen, *top, order, usable, accepted.cols(), out.gap.torque_rms);
+    std::vector<const Candidate*> named;
+    r.effect += alternatives(*chosen, *top, order, usable, accepted.cols(), out.gap.torque_rms, named);
+    std::vector<int> step_joints;  // 0-based
+    for (const int j : r.joints) step_joints.push_back(j - 1);
+    step_alternatives.emplace_back();
+    for (const Candidate* c : named) {
+      if (per_joint(*c->effect)) step_alternatives.back().push_back(narrowed(*c->effect, step_joints));
+    }
     out.selected.push_back(r);
     out.accepted_effects.push_back(*chosen->effect);
     step_parts.emplace_back(chosen->effect->columns * chosen->cv.theta.tail(chosen->effect->columns.cols()));
@@ -1261,6 +1334,7 @@ Diagnosis diagnose(const Dataset& d, const pipeline::Derivation& derivation) {
   }
   out.final_after = joint_rms(baseline, n);
   rechoose_points(out, effects, r0, weight, n);
+  one_effect_for_two_steps(out, step_alternatives, r0, weight, n, step_parts);
   refit_together(out, r0, weight, n, regime_splits(d, away), std::move(step_parts));
 
   if (out.selected.empty()) {
