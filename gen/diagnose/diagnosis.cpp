@@ -830,6 +830,13 @@ void drop_arm_effects_the_others_explain(Diagnosis& out, const Eigen::VectorXd& 
   drop_gone(out, gone, parts, weight, n);
 }
 
+// A per-joint effect that a step named as an alternative ("A or B"), narrowed to the step's joints,
+// and what it explains there on top of the effects accepted before that step.
+struct StepAlternative {
+  Effect effect;
+  RankedEffect described;
+};
+
 // Whether the selected step's name ("A or B or C") names the effect family `family`.
 bool names(const RankedEffect& step, const std::string& family) {
   std::size_t begin = 0;
@@ -848,7 +855,7 @@ bool names(const RankedEffect& step, const std::string& family) {
 // alone cannot see it: a gain of 1.22 on the Panda's joint 7, whose torque is mostly the drive's
 // friction, ties with a Coulomb friction there, and what is left (the gain's share of the rest of
 // the torque) then reads as a payload (blind seed 139 case 59).
-void one_effect_for_two_steps(Diagnosis& out, const std::vector<std::vector<Effect>>& step_alternatives,
+void one_effect_for_two_steps(Diagnosis& out, const std::vector<std::vector<StepAlternative>>& step_alternatives,
                               const Eigen::VectorXd& r0, const Eigen::VectorXd& weight, Eigen::Index n,
                               std::vector<Eigen::VectorXd>& parts) {
   const std::size_t steps = out.accepted_effects.size();
@@ -856,7 +863,7 @@ void one_effect_for_two_steps(Diagnosis& out, const std::vector<std::vector<Effe
   Candidate all;
   bool fitted = false;
   for (std::size_t i = 0; i < steps; ++i) {
-    for (const Effect& alternative : step_alternatives[i]) {
+    for (const auto& [alternative, described] : step_alternatives[i]) {
       for (std::size_t k = i + 1; k < steps; ++k) {
         const RankedEffect& later = out.selected[k];
         const std::vector<int>& first_joints = out.selected[i].joints;
@@ -880,10 +887,7 @@ void one_effect_for_two_steps(Diagnosis& out, const std::vector<std::vector<Effe
         for (std::size_t e = 0; e < i; ++e) at += merged[e].columns.cols();
         parts[i] = alternative.columns * one.cv.theta.segment(at, alternative.columns.cols());
         out.accepted_effects[i] = alternative;
-        out.selected[i].effect = alternative.name;
-        out.selected[i].family = alternative.family;
-        out.selected[i].columns = static_cast<std::size_t>(alternative.columns.cols());
-        out.selected[i].shrink_away_from_zero.reset();
+        out.selected[i] = described;
         std::vector<bool> gone(steps, false);
         gone[k] = true;
         drop_gone(out, gone, parts, weight, n);
@@ -1184,9 +1188,9 @@ Diagnosis diagnose(const Dataset& d, const pipeline::Derivation& derivation) {
   Eigen::MatrixXd accepted(r0.size(), 0);
   Eigen::VectorXd baseline = r0;  // held-out residual of the model so far
   std::vector<std::string> taken;
-  std::vector<std::string> fitted;                     // the per-joint parameters accepted so far ("fc2", ...)
-  std::vector<Eigen::VectorXd> step_parts;             // what each accepted effect fitted at its step (stacked rows)
-  std::vector<std::vector<Effect>> step_alternatives;  // each step's per-joint "or" effects, on its joints
+  std::vector<std::string> fitted;          // the per-joint parameters accepted so far ("fc2", ...)
+  std::vector<Eigen::VectorXd> step_parts;  // what each accepted effect fitted at its step (stacked rows)
+  std::vector<std::vector<StepAlternative>> step_alternatives;  // each step's per-joint "or" effects
   for (int step = 0; step < kMaxEffects; ++step) {
     const Eigen::VectorXd before = joint_rms(baseline, n);
     const StepState step_state{accepted, r0, baseline, weight, away, before, out.gap, derivation};
@@ -1316,7 +1320,12 @@ Diagnosis diagnose(const Dataset& d, const pipeline::Derivation& derivation) {
     for (const int j : r.joints) step_joints.push_back(j - 1);
     step_alternatives.emplace_back();
     for (const Candidate* c : named) {
-      if (per_joint(*c->effect)) step_alternatives.back().push_back(narrowed(*c->effect, step_joints));
+      if (!per_joint(*c->effect)) continue;
+      StepAlternative a{narrowed(*c->effect, step_joints), {}};
+      a.described =
+          describe(evaluate(a.effect, accepted, r0, baseline, weight, n), before, accepted.cols(), out.gap.torque_rms);
+      a.described.accepted = true;
+      step_alternatives.back().push_back(std::move(a));
     }
     out.selected.push_back(r);
     out.accepted_effects.push_back(*chosen->effect);
