@@ -837,6 +837,35 @@ struct StepAlternative {
   RankedEffect described;
 };
 
+// What a selection step judges a candidate on: the residual, the fit accepted so far and its
+// held-out residual.
+struct StepState {
+  const Eigen::MatrixXd& accepted;
+  const Eigen::VectorXd &r0, &baseline, &weight, &away;
+  const Eigen::VectorXd& before;  // per joint, the held-out RMS so far
+  const Gap& gap;
+  const pipeline::Derivation& derivation;
+};
+
+// The per-joint effects among a step's named alternatives, narrowed to the step's joints (`step`,
+// as selected) and evaluated there on top of the effects accepted before it.
+std::vector<StepAlternative> per_joint_alternatives(const std::vector<const Candidate*>& named,
+                                                    const RankedEffect& step, const StepState& s) {
+  std::vector<int> joints;  // 0-based
+  for (const int j : step.joints) joints.push_back(j - 1);
+  const Eigen::Index n = s.before.size();
+  std::vector<StepAlternative> out;
+  for (const Candidate* c : named) {
+    if (!per_joint(*c->effect)) continue;
+    StepAlternative a{narrowed(*c->effect, joints), {}};
+    a.described = describe(evaluate(a.effect, s.accepted, s.r0, s.baseline, s.weight, n), s.before, s.accepted.cols(),
+                           s.gap.torque_rms);
+    a.described.accepted = true;
+    out.push_back(std::move(a));
+  }
+  return out;
+}
+
 // Whether the selected step's name ("A or B or C") names the effect family `family`.
 bool names(const RankedEffect& step, const std::string& family) {
   std::size_t begin = 0;
@@ -1049,16 +1078,6 @@ CrossValidation fit_together(const std::vector<Effect>& effects, const Eigen::Ve
 // TX40's drive log fits springs of 2-10 N m/rad on the wrist and 1100-1500 on joints 1-2, where
 // the rotor inertias the published identification adds are what is missing).
 bool is_narrowed_when_implausible(const Effect& e) { return e.family != "joint_elasticity" && e.family != "backlash"; }
-
-// What a selection step judges a candidate on: the residual, the fit accepted so far and its
-// held-out residual.
-struct StepState {
-  const Eigen::MatrixXd& accepted;
-  const Eigen::VectorXd &r0, &baseline, &weight, &away;
-  const Eigen::VectorXd& before;  // per joint, the held-out RMS so far
-  const Gap& gap;
-  const pipeline::Derivation& derivation;
-};
 
 // A candidate evaluated on top of the accepted fit, its plausibility judged, and for a friction
 // its interval where its joints move (narrowed effects are kept in `narrowed_effects`).
@@ -1316,17 +1335,7 @@ Diagnosis diagnose(const Dataset& d, const pipeline::Derivation& derivation) {
     r.accepted = true;
     std::vector<const Candidate*> named;
     r.effect += alternatives(*chosen, *top, order, usable, accepted.cols(), out.gap.torque_rms, named);
-    std::vector<int> step_joints;  // 0-based
-    for (const int j : r.joints) step_joints.push_back(j - 1);
-    step_alternatives.emplace_back();
-    for (const Candidate* c : named) {
-      if (!per_joint(*c->effect)) continue;
-      StepAlternative a{narrowed(*c->effect, step_joints), {}};
-      a.described =
-          describe(evaluate(a.effect, accepted, r0, baseline, weight, n), before, accepted.cols(), out.gap.torque_rms);
-      a.described.accepted = true;
-      step_alternatives.back().push_back(std::move(a));
-    }
+    step_alternatives.push_back(per_joint_alternatives(named, r, step_state));
     out.selected.push_back(r);
     out.accepted_effects.push_back(*chosen->effect);
     step_parts.emplace_back(chosen->effect->columns * chosen->cv.theta.tail(chosen->effect->columns.cols()));
