@@ -11,9 +11,10 @@
 #   --changed-since COMMIT
 #                  only the translation units that changed since COMMIT or include a header that
 #                  did (from ninja's dependency log); all of them when .clang-tidy changed or
-#                  COMMIT is not in the history. CI passes .ci/tidy-clean-at: a commit that landed
-#                  with the whole tree at zero findings (bump it only to a commit CI has passed),
-#                  so every landing keeps the tree clean without re-tidying what has not changed (a
+#                  COMMIT is not in the history. CI passes .ci/tidy-clean-at: a commit with the
+#                  whole tree at zero findings (bump it only to a commit at which a full `.ci/run`
+#                  on a clean clone passed, CI's or the same run locally, and say which in the
+#                  commit message), so every landing keeps the tree clean without re-tidying what has not changed (a
 #                  full run takes about 20 minutes on 2 cores).
 #   FILE_REGEX     only files whose path matches one of these (e.g. gen/sym/)
 # Environment: CLANG_TIDY (binary, default clang-tidy-14 or clang-tidy).
