@@ -866,21 +866,14 @@ std::vector<StepAlternative> per_joint_alternatives(const std::vector<const Cand
   return out;
 }
 
-// Whether the selected step's name ("A or B or C") names the effect family `family`.
-bool names(const RankedEffect& step, const std::string& family) {
-  std::size_t begin = 0;
-  while (true) {
-    const std::size_t end = step.effect.find(" or ", begin);
-    if (step.effect.substr(begin, end == std::string::npos ? std::string::npos : end - begin) == family) return true;
-    if (end == std::string::npos) return false;
-    begin = end + 4;
-  }
-}
-
 // One per-joint effect that two steps both name as an alternative ("coulomb_friction or torque_gain"
 // on joint 7, then "payload or torque_gain" on joint 7) and that alone, on the first step's joints,
 // explains what the two steps' effects do together (the joint fit not clearly worse) is the
-// explanation of both: it takes the first step's place and the later step goes. Each step judged
+// explanation of both: it takes the first step's place and the later step goes. Not where the later
+// step's leader is that effect itself: the first step chose its own leader over it, and the later
+// step found it needed beside that leader (the TX40's viscous friction of every joint, with Coulomb
+// as its alternative, then a Coulomb friction of joints 3, 4 and 6: read as Coulomb friction alone,
+// fc1 27 N m for an a priori 6.8, standing in for the viscous part too). Each step judged
 // alone cannot see it: a gain of 1.22 on the Panda's joint 7, whose torque is mostly the drive's
 // friction, ties with a Coulomb friction there, and what is left (the gain's share of the rest of
 // the torque) then reads as a payload (blind seed 139 case 59).
@@ -892,14 +885,18 @@ void one_effect_for_two_steps(Diagnosis& out, const std::vector<std::vector<Step
   Candidate all;
   bool fitted = false;
   for (std::size_t i = 0; i < steps; ++i) {
-    for (const auto& [alternative, described] : step_alternatives[i]) {
+    for (const StepAlternative& named_first : step_alternatives[i]) {
+      const Effect& alternative = named_first.effect;
       for (std::size_t k = i + 1; k < steps; ++k) {
         const RankedEffect& later = out.selected[k];
         const std::vector<int>& first_joints = out.selected[i].joints;
         const bool within = std::all_of(later.joints.begin(), later.joints.end(), [&](int j) {
           return std::find(first_joints.begin(), first_joints.end(), j) != first_joints.end();
         });
-        if (!within || !names(later, alternative.family) || alternative.columns.cols() == 0) continue;
+        const bool named_later =
+            std::any_of(step_alternatives[k].begin(), step_alternatives[k].end(),
+                        [&](const StepAlternative& a) { return a.effect.family == alternative.family; });
+        if (!within || !named_later || alternative.columns.cols() == 0) continue;
         if (!fitted) {
           all.cv = fit_together(out.accepted_effects, r0, weight, out.away, n);
           set_shrink(all, r0, weight, n);
@@ -916,7 +913,7 @@ void one_effect_for_two_steps(Diagnosis& out, const std::vector<std::vector<Step
         for (std::size_t e = 0; e < i; ++e) at += merged[e].columns.cols();
         parts[i] = alternative.columns * one.cv.theta.segment(at, alternative.columns.cols());
         out.accepted_effects[i] = alternative;
-        out.selected[i] = described;
+        out.selected[i] = named_first.described;
         std::vector<bool> gone(steps, false);
         gone[k] = true;
         drop_gone(out, gone, parts, weight, n);
