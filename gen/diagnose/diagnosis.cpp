@@ -869,14 +869,14 @@ std::vector<StepAlternative> per_joint_alternatives(const std::vector<const Cand
 // One per-joint effect that two steps both name as an alternative ("coulomb_friction or torque_gain"
 // on joint 7, then "payload or torque_gain" on joint 7) and that alone, on the first step's joints,
 // explains what the two steps' effects do together (the joint fit not clearly worse) is the
-// explanation of both: it takes the first step's place and the later step goes. Not where the later
-// step's leader is that effect itself: the first step chose its own leader over it, and the later
-// step found it needed beside that leader (the TX40's viscous friction of every joint, with Coulomb
-// as its alternative, then a Coulomb friction of joints 3, 4 and 6: read as Coulomb friction alone,
-// fc1 27 N m for an a priori 6.8, standing in for the viscous part too). Each step judged
+// explanation of both: it takes the first step's place and the later step goes. Each step judged
 // alone cannot see it: a gain of 1.22 on the Panda's joint 7, whose torque is mostly the drive's
 // friction, ties with a Coulomb friction there, and what is left (the gain's share of the rest of
-// the torque) then reads as a payload (blind seed 139 case 59).
+// the torque) then reads as a payload (blind seed 139 case 59). Not where the later step's leader
+// is that effect itself: the first step chose its own leader over it, and the later step found it
+// needed beside that leader (the TX40's viscous friction of every joint, with Coulomb as its
+// alternative, then a Coulomb friction of joints 3, 4 and 6: read as Coulomb friction alone, fc1
+// 27 N m for an a priori 6.8, standing in for the viscous part too).
 void one_effect_for_two_steps(Diagnosis& out, const std::vector<std::vector<StepAlternative>>& step_alternatives,
                               const Eigen::VectorXd& r0, const Eigen::VectorXd& weight, Eigen::Index n,
                               std::vector<Eigen::VectorXd>& parts) {
