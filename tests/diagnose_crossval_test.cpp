@@ -94,5 +94,68 @@ TEST(DiagnoseCrossValidation, FitsOnOneMatrixAndPredictsWithTheOther) {
   expect_folds_fitted_outside(p, p.F, cv);
 }
 
+// Errors in variables, with the closed forms of the textbook case: y = theta x + beta z + e, the
+// first column measured as c = x + a e + v (its noise partly the target's own, as a spring's
+// column made from the logged torque is). Least squares reads theta as
+// (theta var x + a var e) / (var x + a^2 var e + var v); with draws of the noise (a e + v, e)
+// taken off its normal equations it reads theta itself. The clean column's beta is unbiased
+// either way.
+struct ErrorsInVariables {
+  Eigen::VectorXd y;
+  Eigen::MatrixXd E;
+  diagnose::NoiseDraws noise;
+};
+
+ErrorsInVariables errors_in_variables(double theta, double beta, double a, double sigma_e, double sigma_v) {
+  constexpr Eigen::Index kRows = 40000;
+  constexpr int kDraws = 40;
+  std::mt19937 random(11);
+  std::normal_distribution<double> normal(0.0, 1.0);
+  auto draw = [&](double sigma) {
+    return Eigen::VectorXd(Eigen::VectorXd::NullaryExpr(kRows, [&]() { return sigma * normal(random); }));
+  };
+  const Eigen::VectorXd x = draw(1.0), z = draw(1.0), e = draw(sigma_e), v = draw(sigma_v);
+  ErrorsInVariables p;
+  p.y = theta * x + beta * z + e;
+  p.E.resize(kRows, 2);
+  p.E << x + a * e + v, z;
+  p.noise.at = {0};
+  for (int m = 0; m < kDraws; ++m) {
+    const Eigen::VectorXd target = draw(sigma_e), own = draw(sigma_v);
+    p.noise.columns.emplace_back(a * target + own);
+    p.noise.target.push_back(target);
+  }
+  return p;
+}
+
+TEST(DiagnoseCrossValidation, NoiseDrawsTakeTheErrorsInVariablesBiasOff) {
+  const double theta = 2.0, beta = -0.7, a = -1.0, sigma_e = 0.5, sigma_v = 0.5;
+  const ErrorsInVariables p = errors_in_variables(theta, beta, a, sigma_e, sigma_v);
+  const Eigen::VectorXd weight = Eigen::VectorXd::Ones(1);
+  const double biased = (theta + a * sigma_e * sigma_e) / (1.0 + a * a * sigma_e * sigma_e + sigma_v * sigma_v);
+  const diagnose::CrossValidation plain = diagnose::cross_validate(p.y, p.E, 1, weight);
+  EXPECT_NEAR(plain.theta[0], biased, 0.03);  // 1.167: the bias is real
+  EXPECT_NEAR(plain.theta[1], beta, 0.03);
+  const diagnose::CrossValidation corrected = diagnose::cross_validate(p.y, p.E, 1, weight, nullptr, &p.noise);
+  EXPECT_NEAR(corrected.theta[0], theta, 0.05);
+  EXPECT_NEAR(corrected.theta[1], beta, 0.03);
+  for (int f = 0; f < diagnose::kFolds; ++f) EXPECT_NEAR(corrected.theta_folds(0, f), theta, 0.1) << "fold " << f;
+  // Each fold predicts its own rows with its corrected fit.
+  const Eigen::Index rows = p.y.size() / diagnose::kFolds;
+  const Eigen::VectorXd left = p.y.head(rows) - p.E.topRows(rows) * corrected.theta_folds.col(0);
+  EXPECT_LT((corrected.heldout.head(rows) - left).norm(), 1e-9 * left.norm());
+}
+
+// Where the noise is most of the column (its expected square over kLargestNoiseShare of the
+// column's), the correction would divide by what is left of the noise's estimate: the plain fit.
+TEST(DiagnoseCrossValidation, NoiseThatSwampsAColumnLeavesThePlainFit) {
+  const ErrorsInVariables p = errors_in_variables(2.0, -0.7, -1.0, 0.5, 1.2);
+  const Eigen::VectorXd weight = Eigen::VectorXd::Ones(1);
+  const diagnose::CrossValidation plain = diagnose::cross_validate(p.y, p.E, 1, weight);
+  const diagnose::CrossValidation corrected = diagnose::cross_validate(p.y, p.E, 1, weight, nullptr, &p.noise);
+  EXPECT_EQ(corrected.theta, plain.theta);
+  EXPECT_EQ(corrected.heldout, plain.heldout);
+}
+
 }  // namespace
 }  // namespace dyncc::test

@@ -1,5 +1,6 @@
 #include "diagnose/crossval.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -19,6 +20,29 @@ Eigen::VectorXd solve(const Eigen::MatrixXd& normal, const Eigen::VectorXd& mome
   return scale.asDiagonal() * x;
 }
 
+// Block `begin`..`end` (samples)'s expected noise share of the normal matrix and moment, over the
+// draws, weighted as the rows are, added at the noisy columns.
+void add_noise_share(const NoiseDraws& noise, Eigen::Index joints, const Eigen::VectorXd& weight, Eigen::Index begin,
+                     Eigen::Index end, Eigen::MatrixXd& normal, Eigen::VectorXd& moment) {
+  const Eigen::Index rows = (end - begin) * joints, k = static_cast<Eigen::Index>(noise.at.size());
+  if (rows <= 0) return;
+  const Eigen::VectorXd w = weight.replicate(end - begin, 1);
+  const double share = 1.0 / static_cast<double>(noise.columns.size());
+  Eigen::MatrixXd nn = Eigen::MatrixXd::Zero(k, k);
+  Eigen::VectorXd ny = Eigen::VectorXd::Zero(k);
+  for (std::size_t m = 0; m < noise.columns.size(); ++m) {
+    const Eigen::MatrixXd block = w.asDiagonal() * noise.columns[m].middleRows(begin * joints, rows);
+    nn += share * block.transpose() * block;
+    ny += share * block.transpose() * w.cwiseProduct(noise.target[m].segment(begin * joints, rows));
+  }
+  for (Eigen::Index a = 0; a < k; ++a) {
+    moment[noise.at[static_cast<std::size_t>(a)]] += ny[a];
+    for (Eigen::Index b = 0; b < k; ++b) {
+      normal(noise.at[static_cast<std::size_t>(a)], noise.at[static_cast<std::size_t>(b)]) += nn(a, b);
+    }
+  }
+}
+
 }  // namespace
 
 Eigen::VectorXd joint_rms(const Eigen::VectorXd& stacked, Eigen::Index joints, Eigen::Index begin, Eigen::Index end) {
@@ -32,7 +56,8 @@ Eigen::VectorXd joint_rms(const Eigen::VectorXd& stacked, Eigen::Index joints, E
 }
 
 CrossValidation cross_validate(const Eigen::VectorXd& r, const Eigen::MatrixXd& E, Eigen::Index joints,
-                               const Eigen::VectorXd& weight, const Eigen::MatrixXd* fitted_on) {
+                               const Eigen::VectorXd& weight, const Eigen::MatrixXd* fitted_on,
+                               const NoiseDraws* noise) {
   const Eigen::Index samples = r.size() / joints, k = E.cols();
   const Eigen::MatrixXd& F = fitted_on != nullptr ? *fitted_on : E;
   CrossValidation cv;
@@ -67,6 +92,25 @@ CrossValidation cross_validate(const Eigen::VectorXd& r, const Eigen::MatrixXd& 
   for (Eigen::Index c = 0; c < k; ++c) {
     const double norm_squared = all_normal(c, c);
     scale[c] = norm_squared > 0 ? 1.0 / std::sqrt(norm_squared) : 0.0;
+  }
+  if (noise != nullptr && !noise->at.empty()) {
+    std::vector<Eigen::MatrixXd> noise_normal(kFolds, Eigen::MatrixXd::Zero(k, k));
+    std::vector<Eigen::VectorXd> noise_moment(kFolds, Eigen::VectorXd::Zero(k));
+    Eigen::MatrixXd all_noise = Eigen::MatrixXd::Zero(k, k);
+    for (int f = 0; f < kFolds; ++f) {
+      add_noise_share(*noise, joints, weight, fold_begin(samples, f), fold_begin(samples, f + 1), noise_normal[f],
+                      noise_moment[f]);
+      all_noise += noise_normal[f];
+    }
+    const bool swamped = std::any_of(noise->at.begin(), noise->at.end(), [&](Eigen::Index c) {
+      return all_noise(c, c) > kLargestNoiseShare * all_normal(c, c);
+    });
+    for (int f = 0; f < kFolds && !swamped; ++f) {
+      normal[f] -= noise_normal[f];
+      moment[f] -= noise_moment[f];
+      all_normal -= noise_normal[f];
+      all_moment -= noise_moment[f];
+    }
   }
   for (int f = 0; f < kFolds; ++f) {
     const Eigen::Index begin = fold_begin(samples, f), end = fold_begin(samples, f + 1);

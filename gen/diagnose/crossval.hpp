@@ -23,12 +23,29 @@ struct CrossValidation {
   std::vector<Eigen::Index> fold_end;  // sample index where each block ends
 };
 
+/// Draws of the noise that some columns share with the target (errors in variables): per draw,
+/// those columns' noise (rows x at.size(), masked as the columns are fitted) and the target's. A
+/// column made from the noisy target (a spring's, from the logged torque it carries) has a noise
+/// part whose square biases its coefficient toward zero and whose product with the target's noise
+/// biases it away; their expected values over the draws, taken off the normal equations, leave
+/// an unbiased fit (corrected least squares).
+struct NoiseDraws {
+  std::vector<Eigen::Index> at;          // the columns of E the draws belong to
+  std::vector<Eigen::MatrixXd> columns;  // per draw
+  std::vector<Eigen::VectorXd> target;   // per draw
+};
+
 /// Fits r ~ E theta (columns scaled to unit norm, a tiny ridge for collinear columns) with
 /// rows weighted per joint (weight[j] for joint j's rows), K times on K-1 blocks.
 /// With `fitted_on` (same shape as E), the fits use its columns and the predictions E's: a column
 /// can be fitted on some rows only (zero elsewhere in `fitted_on`) and still predict on all.
+/// With `noise`, each fit's normal equations lose the noise's expected share (NoiseDraws), unless
+/// on some noisy column it is over kLargestNoiseShare of the column's square (the noise then
+/// swamps what the column says, and the plain fit is returned).
+inline constexpr double kLargestNoiseShare = 0.5;
 CrossValidation cross_validate(const Eigen::VectorXd& r, const Eigen::MatrixXd& E, Eigen::Index joints,
-                               const Eigen::VectorXd& weight, const Eigen::MatrixXd* fitted_on = nullptr);
+                               const Eigen::VectorXd& weight, const Eigen::MatrixXd* fitted_on = nullptr,
+                               const NoiseDraws* noise = nullptr);
 
 /// Per-joint RMS of stacked rows (row s*n + j), over samples [begin, end).
 Eigen::VectorXd joint_rms(const Eigen::VectorXd& stacked, Eigen::Index joints, Eigen::Index begin = 0,

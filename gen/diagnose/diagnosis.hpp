@@ -68,9 +68,11 @@ Diagnosis diagnose(const Dataset& data, const pipeline::Derivation& derivation);
 /// fitted there (a rigid plant's friction regularised over 10 mrad/s read 11 % low). A joint's rows
 /// near zero whose held-out mean square after a first fit is over twice that away from zero hold
 /// a static friction, not noise: the fit is made again without them. With `rows` (stacked, 0 or
-/// 1), only the rows marked 1 are fitted on.
+/// 1), only the rows marked 1 are fitted on. `unbiased`: the coefficients (theta, its folds and
+/// error) are read free of the logged torque's noise where columns are made from it
+/// (Effect::torque_noise); the held-out residual is then the corrected fits', a worse predictor.
 CrossValidation fit_together(const std::vector<Effect>& effects, const Eigen::VectorXd& residual,
                              const Eigen::VectorXd& weight, const Eigen::VectorXd& away, Eigen::Index n,
-                             const Eigen::VectorXd* rows = nullptr);
+                             const Eigen::VectorXd* rows = nullptr, bool unbiased = false);
 
 }  // namespace dyncc::diagnose

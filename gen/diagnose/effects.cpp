@@ -4,11 +4,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 #include <numbers>
 
 #include "diagnose/payload.hpp"
 #include "diagnose/shifted_positions.hpp"
 #include "diagnose/signals.hpp"
+#include "diagnose/torque_noise.hpp"
 
 namespace dyncc::diagnose {
 namespace {
@@ -151,6 +153,7 @@ std::vector<Effect> candidate_effects(const Dataset& d, const pipeline::Derivati
   const Eigen::MatrixXd& carried = sensitivity.transmitted;
   shifted("joint_elasticity", "stiffness", Reading::reciprocal,
           [&](Eigen::Index s, Eigen::Index j) { return carried(s, j); });
+  out.back().torque_noise = std::make_shared<const NoiseDraws>(carried_torque_noise(d, sensitivity));
   // Backlash of width b: the link sits b/2 behind the motor on the side that torque pushes (on a
   // joint where it turns over: elsewhere it is an offset, the simpler explanation).
   const Eigen::VectorXd turning = minority_sign_share(carried);

@@ -7,9 +7,11 @@
 #pragma once
 
 #include <Eigen/Dense>
+#include <memory>
 #include <string>
 #include <vector>
 
+#include "diagnose/crossval.hpp"
 #include "diagnose/dataset.hpp"
 
 namespace dyncc::diagnose {
@@ -37,6 +39,9 @@ struct Effect {
   // contact: ContactPoint::coordinates).
   std::vector<double> profile_point;
   std::string family;  // effects of one family are alternatives of each other
+  // Where the columns are made from the logged torque (a spring's): that torque's noise in them,
+  // per joint (`at` the joints, not columns), for reading the parameters unbiased (torque_noise.hpp).
+  std::shared_ptr<const NoiseDraws> torque_noise;
 };
 
 /// A backlash shows only on a joint whose transmitted torque turns over: with its less common sign

@@ -150,12 +150,8 @@ ModelSensitivity model_sensitivity(const Dataset& d, const pipeline::Derivation&
   return m;
 }
 
-void fit_shift_columns(const Dataset& d, const pipeline::Derivation& derivation, const ModelSensitivity& m,
-                       const Shift& shift, Effect& effect) {
-  const ModelTorque model(derivation);
+Eigen::MatrixXd shift_tangents(const Dataset& d, const ModelSensitivity& m, const Shift& shift) {
   const Eigen::Index n = d.n, samples = d.samples();
-  const Eigen::MatrixXd& tau = m.tau;
-  const Eigen::VectorXd reach = shift.w.cwiseAbs().colwise().maxCoeff().transpose();  // largest |w_j|
   Eigen::MatrixXd tangent(samples * n, n);
   for (Eigen::Index s = 0; s < samples; ++s) {
     const auto i = static_cast<std::size_t>(s);
@@ -164,7 +160,16 @@ void fit_shift_columns(const Dataset& d, const pipeline::Derivation& derivation,
                                         m.by_qdd[i].col(j) * shift.wdd(s, j));
     }
   }
-  effect.columns = d.condition(tangent);
+  return tangent;
+}
+
+void fit_shift_columns(const Dataset& d, const pipeline::Derivation& derivation, const ModelSensitivity& m,
+                       const Shift& shift, Effect& effect) {
+  const ModelTorque model(derivation);
+  const Eigen::Index n = d.n, samples = d.samples();
+  const Eigen::MatrixXd& tau = m.tau;
+  const Eigen::VectorXd reach = shift.w.cwiseAbs().colwise().maxCoeff().transpose();  // largest |w_j|
+  effect.columns = d.condition(shift_tangents(d, m, shift));
   for (int pass = 0; pass < 2; ++pass) {
     const Eigen::VectorXd theta = weighted_fit(d, effect.columns);
     std::vector<Eigen::Index> shifted;

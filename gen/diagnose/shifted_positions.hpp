@@ -37,6 +37,11 @@ struct ModelSensitivity {
 };
 ModelSensitivity model_sensitivity(const Dataset& d, const pipeline::Derivation& derivation);
 
+/// Per unit theta, the model's change when the positions move by -theta w_j (with the filtered
+/// velocity and acceleration): S*n x n on the evaluation rows, not conditioned. Column j is the
+/// tangent of a shift of joint j; linear in the shift pattern.
+Eigen::MatrixXd shift_tangents(const Dataset& d, const ModelSensitivity& m, const Shift& shift);
+
 /// The effect's columns (S*n x n, conditioned into the analysis rows) for the shift pattern:
 /// column j is (model at positions - theta_j w_j) - (model) over theta_j: the tangent first, then,
 /// twice, the secant at the fitted theta_j where the largest shift exceeds 0.01 rad.
