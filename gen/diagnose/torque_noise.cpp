@@ -23,7 +23,7 @@ NoiseDraws carried_torque_noise(const Dataset& d, const ModelSensitivity& m) {
         for (Eigen::Index s = g.begin; s < g.end; ++s) noise(s, j) = sigma * unit(random);
       }
     }
-    out.columns.push_back(d.condition(shift_tangents(d, m, filtered_shift(d, noise))));
+    out.columns.emplace_back(d.condition(shift_tangents(d, m, filtered_shift(d, noise))));
     const Eigen::MatrixXd transposed = noise.transpose();  // stacked: row s*n + j
     out.target.push_back(d.condition(Eigen::Map<const Eigen::VectorXd>(transposed.data(), samples * n)).col(0));
   }
