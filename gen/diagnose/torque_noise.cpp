@@ -25,7 +25,7 @@ NoiseDraws carried_torque_noise(const Dataset& d, const ModelSensitivity& m) {
     }
     out.columns.emplace_back(d.condition(shift_tangents(d, m, filtered_shift(d, noise))));
     const Eigen::MatrixXd transposed = noise.transpose();  // stacked: row s*n + j
-    out.target.push_back(d.condition(Eigen::Map<const Eigen::VectorXd>(transposed.data(), samples * n)).col(0));
+    out.target.emplace_back(d.condition(Eigen::Map<const Eigen::VectorXd>(transposed.data(), samples * n)).col(0));
   }
   return out;
 }
