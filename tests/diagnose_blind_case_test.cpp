@@ -329,5 +329,18 @@ TEST(BlindBenchCase, SoftKraftSpringReadFreeOfTheTorqueNoise) {
               {{"stiffness1", spring.size, 0.1 * spring.size}});
 }
 
+// Case 34 of the blind seed 149 (PUMA 560, 81 Hz): a viscous friction of 4.31 on joint 1 beside
+// a contact of the wrist, half as large. A spring of joint 1 explained more of the log (38 %) than
+// the friction (33 %), all of it at reversals (-0.5 % where the velocity is away from zero, so it
+// is never acceptable), yet the friction, the gain and Coulomb friction each gave joint 1 to it,
+// and the contact was named alone. An effect that explains nothing away from zero velocity, where
+// it must, takes no joint from another.
+TEST(BlindBenchCase, PumaViscousFrictionDoesNotGiveItsJointToASpringThatCannotTakeIt) {
+  const Injection viscous{.effect = "viscous_friction", .joint = 0, .size = 4.3096242892800936};
+  const Injection contact{.effect = "contact", .joint = 4, .size = 0.15189403586410116};
+  expect_case(diagnosed("puma560", {viscous, contact}, 81, 149U * 1000U + 34U), "viscous_friction", {1},
+              {{"fv1", viscous.size, 0.1 * viscous.size}});
+}
+
 }  // namespace
 }  // namespace dyncc::test
