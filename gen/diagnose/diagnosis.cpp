@@ -927,12 +927,6 @@ void one_effect_for_two_steps(Diagnosis& out, const std::vector<std::vector<Step
   }
 }
 
-// Once every effect is in: all of them fitted together, each per-joint effect narrowed once more
-// to the joints its own columns still carry (an offset of joint 3 that only stood in for a gain
-// of joint 5 until the gain came in is dropped), and every effect's parameters read from that
-// joint fit rather than from the step that accepted it; one whose own columns carry nothing any
-// more is dropped. The stated errors add to the folds' spread how far the fit moves between
-// regimes of the motion (regime_error); the parameters are read in applied torque.
 // The joint fit's coefficients read free of the logged torque's noise where a selected effect's
 // columns are made from it (a spring: torque_noise.hpp), into `joint`'s read_theta and read_error.
 // What the fit explains, and so which joints each effect keeps, stays the plain least-squares
@@ -947,6 +941,13 @@ void read_free_of_torque_noise(const std::vector<Effect>& effects, Candidate& jo
   joint.read_error = unbiased.theta_error;
 }
 
+// Once every effect is in: all of them fitted together, each per-joint effect narrowed once more
+// to the joints its own columns still carry (an offset of joint 3 that only stood in for a gain
+// of joint 5 until the gain came in is dropped), and every effect's parameters read from that
+// joint fit rather than from the step that accepted it; one whose own columns carry nothing any
+// more is dropped. The stated errors add to the folds' spread how far the fit moves between
+// regimes of the motion (regime_error); the parameters are read in applied torque and, a spring's,
+// free of the logged torque's noise (read_free_of_torque_noise).
 void refit_together(Diagnosis& out, const Eigen::VectorXd& r0, const Eigen::VectorXd& weight, Eigen::Index n,
                     const std::vector<RegimeSplit>& splits, std::vector<Eigen::VectorXd> parts) {
   if (out.accepted_effects.empty()) return;
