@@ -51,6 +51,13 @@ struct Candidate {
   double material = 0;     // largest per-joint explained RMS / torque RMS
   bool plausible = true;   // its fitted parameters make physical sense
   double away_shrink = 0;  // the shrink on the rows where the velocity is away from zero
+  // A friction's held-out residual with its own columns fitted on the rows away from zero velocity
+  // only, as the final joint fit fits them (fit_together): what its shrink and interval there are
+  // read from. Empty: cv's (an effect judged there that is fitted on every row).
+  Eigen::VectorXd away_heldout;
+  [[nodiscard]] const Eigen::VectorXd& heldout_away() const {
+    return away_heldout.size() > 0 ? away_heldout : cv.heldout;
+  }
   // Per column of cv, the error beyond the folds' spread (regime_error); only for the final joint
   // fit, whose parameters are reported: the steps judge significance on the folds alone.
   Eigen::VectorXd systematic;
@@ -78,14 +85,15 @@ double score(const Eigen::VectorXd& stacked, const Eigen::VectorXd& weight, Eige
   return sum;
 }
 
-// The held-out shrink on the stacked rows where `keep` is 1.
-double shrink_where(const Candidate& c, const Eigen::VectorXd& baseline, const Eigen::VectorXd& weight,
-                    const Eigen::VectorXd& keep, Eigen::Index n) {
+// The held-out shrink on the stacked rows where the velocity is away from zero (`away` is 1).
+double shrink_away(const Candidate& c, const Eigen::VectorXd& baseline, const Eigen::VectorXd& weight,
+                   const Eigen::VectorXd& away, Eigen::Index n) {
+  const Eigen::VectorXd& heldout = c.heldout_away();
   double before = 0, after = 0;
   for (Eigen::Index r = 0; r < baseline.size(); ++r) {
-    const double w = keep[r] * weight[r % n] * weight[r % n];
+    const double w = away[r] * weight[r % n] * weight[r % n];
     before += w * baseline[r] * baseline[r];
-    after += w * c.cv.heldout[r] * c.cv.heldout[r];
+    after += w * heldout[r] * heldout[r];
   }
   return before > 0 ? 1.0 - after / before : 0.0;
 }
@@ -155,7 +163,7 @@ void set_away_interval(Candidate& c, const Eigen::VectorXd& baseline, const Eige
         const Eigen::Index r = s * n + j;
         const double w = away[r] * weight[j] * weight[j];
         before += w * baseline[r] * baseline[r];
-        after += w * c.cv.heldout[r] * c.cv.heldout[r];
+        after += w * c.heldout_away()[r] * c.heldout_away()[r];
         moving += away[r];
       }
     }
@@ -224,7 +232,14 @@ Candidate evaluate_point(const Effect& effect, const Eigen::MatrixXd& accepted, 
                          const Eigen::VectorXd& baseline, const Eigen::VectorXd& weight, const Eigen::VectorXd& away,
                          Eigen::Index n) {
   Candidate c = evaluate(effect, accepted, r0, baseline, weight, n);
-  if (judged_away_from_zero(effect)) c.away_shrink = shrink_where(c, baseline, weight, away, n);
+  if (is_friction(effect)) {
+    Eigen::MatrixXd columns(r0.size(), accepted.cols() + effect.columns.cols());
+    columns << accepted, effect.columns;
+    Eigen::MatrixXd fitted_on = columns;
+    fitted_on.rightCols(effect.columns.cols()).array().colwise() *= away.array();
+    c.away_heldout = cross_validate(r0, columns, n, weight, &fitted_on).heldout;
+  }
+  if (judged_away_from_zero(effect)) c.away_shrink = shrink_away(c, baseline, weight, away, n);
   return c;
 }
 
@@ -1305,7 +1320,7 @@ Diagnosis diagnose(const Dataset& d, const pipeline::Derivation& derivation) {
           }
           const Effect theirs = without_fitted(narrowed(e, {joint - 1}), fitted);
           if (theirs.columns.cols() == 0) continue;
-          const Candidate other = evaluate(theirs, accepted, r0, baseline, weight, n);
+          const Candidate other = evaluate_point(theirs, accepted, r0, baseline, weight, away, n);
           const bool better = better_by_the_margin(other, mine);
           const bool simpler_and_as_good = theirs.columns.cols() < mine_effect.columns.cols() &&
                                            !clearly_more(mine, other) && !better_by_the_margin(mine, other);
@@ -1313,10 +1328,9 @@ Diagnosis diagnose(const Dataset& d, const pipeline::Derivation& derivation) {
           // (a spring of the PUMA's joint 1 explained 38 % of a log whose joint 1 has a viscous
           // friction of 4.3, all of it at reversals: every friction and the gain gave joint 1 to
           // it, and a contact of a second, smaller effect was named alone; blind seed 149 case 34).
-          beaten =
-              (better || simpler_and_as_good) && other.low > 0.0 &&
-              (!judged_away_from_zero(theirs) || shrink_where(other, baseline, weight, away, n) >= kAcceptShrink) &&
-              plausible(describe(other, before, accepted.cols(), out.gap.torque_rms), derivation, out.gap);
+          beaten = (better || simpler_and_as_good) && other.low > 0.0 &&
+                   (!judged_away_from_zero(theirs) || other.away_shrink >= kAcceptShrink) &&
+                   plausible(describe(other, before, accepted.cols(), out.gap.torque_rms), derivation, out.gap);
           if (beaten && simpler_and_as_good && lost_to_simpler != nullptr) *lost_to_simpler = true;  // as good, simpler
         }
         if (!beaten) kept.push_back(joint - 1);
