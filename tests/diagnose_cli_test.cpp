@@ -279,6 +279,21 @@ TEST(DiagnoseCommand, TeleoperationPayloadWindowDoesNotTakeInTheHoldBeforeThePic
   EXPECT_NEAR(fitted["mass"], mass, 0.1 * mass);
 }
 
+// The verdict is a Stribeck friction of `joint` (from 1) alone, its excess within 10 % of
+// `excess`, and (where `scale` is not 0) read at the velocity scale `scale`.
+void expect_stribeck(const nlohmann::json& d, int joint, double excess, double scale = 0) {
+  EXPECT_EQ(d["verdict"]["effect"], "stribeck_friction") << d["verdict"].dump();
+  EXPECT_EQ(d["verdict"]["joints"], nlohmann::json::array({joint})) << d["verdict"].dump();
+  ASSERT_FALSE(d["selected"].empty());
+  if (scale > 0) {
+    EXPECT_DOUBLE_EQ(d["selected"][0]["velocity_scale"].get<double>(), scale);
+  }
+  std::map<std::string, double> fitted = fitted_of(d);
+  const std::string name = fmt::format("fs{}", joint);
+  ASSERT_TRUE(fitted.count(name)) << d["selected"].dump();
+  EXPECT_NEAR(fitted[name], excess, 0.1 * excess);
+}
+
 // Blind bench seed 61, case 18: a Stribeck excess of joint 1 at 5 % of the torque RMS on the rigid
 // plant's tele-operation log (1 kHz). The first step chooses the plant's velocity scale (0.1 rad/s);
 // narrowed to joint 1, a wider scale fits the rows away from zero velocity a little better, within
@@ -288,13 +303,7 @@ TEST(DiagnoseCommand, TeleoperationStribeckScaleStaysTheStepsWhenNarrowingGainsN
   const nlohmann::json d =
       diagnose_excited("teleop_stribeck", effects_file_of({joint_effect("stribeck_friction", 1, "fs", excess)}),
                        "--plant dyncc --trajectory teleop --rate 1000 --seed 61018");
-  EXPECT_EQ(d["verdict"]["effect"], "stribeck_friction") << d["verdict"].dump();
-  EXPECT_EQ(d["verdict"]["joints"], nlohmann::json::array({1})) << d["verdict"].dump();
-  ASSERT_FALSE(d["selected"].empty());
-  EXPECT_DOUBLE_EQ(d["selected"][0]["velocity_scale"].get<double>(), 0.1);  // dyncc-sim's own scale
-  std::map<std::string, double> fitted = fitted_of(d);
-  ASSERT_TRUE(fitted.count("fs1")) << d["selected"].dump();
-  EXPECT_NEAR(fitted["fs1"], excess, 0.1 * excess);
+  expect_stribeck(d, 1, excess, 0.1);  // dyncc-sim's own scale
 }
 
 // Blind bench seed 79, case 33: a Stribeck excess of joint 1 at 10 % of the torque RMS on the
@@ -308,13 +317,7 @@ TEST(DiagnoseCommand, TeleoperationStribeckScaleIsChosenByAFitWhereTheJointMoves
   const nlohmann::json d =
       diagnose_excited("teleop_stribeck_mujoco", effects_file_of({joint_effect("stribeck_friction", 1, "fs", excess)}),
                        "--plant mujoco --trajectory teleop --rate 1000 --seed 79033");
-  EXPECT_EQ(d["verdict"]["effect"], "stribeck_friction") << d["verdict"].dump();
-  EXPECT_EQ(d["verdict"]["joints"], nlohmann::json::array({1})) << d["verdict"].dump();
-  ASSERT_FALSE(d["selected"].empty());
-  EXPECT_DOUBLE_EQ(d["selected"][0]["velocity_scale"].get<double>(), 0.1);  // the plant's own scale
-  std::map<std::string, double> fitted = fitted_of(d);
-  ASSERT_TRUE(fitted.count("fs1")) << d["selected"].dump();
-  EXPECT_NEAR(fitted["fs1"], excess, 0.1 * excess);
+  expect_stribeck(d, 1, excess, 0.1);  // the plant's own scale
 }
 
 // Blind bench seed 83, case 24: a Stribeck excess of joint 2 (10 % of the torque) beside a table
@@ -329,11 +332,7 @@ TEST(DiagnoseCommand, CoulombFrictionClearlyWorseWhereTheJointMovesIsNotAsGoodAs
                        joint_effect("stribeck_friction", 2, "fs", excess)});
   const nlohmann::json d = diagnose_excited("fourier_stribeck_contact", effects,
                                             "--plant dyncc --trajectory fourier --rate 200 --seed 83024");
-  EXPECT_EQ(d["verdict"]["effect"], "stribeck_friction") << d["verdict"].dump();
-  EXPECT_EQ(d["verdict"]["joints"], nlohmann::json::array({2})) << d["verdict"].dump();
-  std::map<std::string, double> fitted = fitted_of(d);
-  ASSERT_TRUE(fitted.count("fs2")) << d["selected"].dump();
-  EXPECT_NEAR(fitted["fs2"], excess, 0.1 * excess);
+  expect_stribeck(d, 2, excess);
 }
 
 // Blind bench seed 37, case 9: a Stribeck excess of joint 3 (20 % of the torque) beside a 26.6 ms
