@@ -81,5 +81,33 @@ TEST(RegimeError, ABiasEveryFoldSharesIsStated) {
   EXPECT_LE(e.regimes, 2 * miss) << "stated, not blown up";
 }
 
+TEST(RegimeError, AHalfWhereAColumnIsNextToNothingSaysNothingOfIt) {
+  // A Stribeck excess that fades over 0.1 rad/s beside the viscous friction, both in the data and
+  // in the fit: the model is right. The fast half of the speed split holds next to none of the
+  // excess column, so its fit of the excess is not a reading that disagrees.
+  constexpr double kExcess = 0.08, kScale = 0.1;
+  OneJointLog log = one_joint_log(0.0);
+  diagnose::Effect excess = log.effects.front();
+  excess.name = excess.family = "stribeck_friction";
+  excess.parameters = {"fs1"};
+  std::mt19937 random(11);
+  std::normal_distribution<double> noise(0.0, 0.01);
+  for (Eigen::Index s = 0; s < log.residual.size(); ++s) {
+    const double v = log.data.analysis_qd(s, 0);
+    excess.columns(s, 0) = std::exp(-(v / kScale) * (v / kScale)) * std::tanh(v / 0.01);
+    log.residual[s] = kViscous * v + kExcess * excess.columns(s, 0) + noise(random);
+  }
+  log.effects.push_back(excess);
+  const Eigen::VectorXd weight = Eigen::VectorXd::Ones(1);
+  const Eigen::VectorXd away = Eigen::VectorXd::Ones(log.residual.size());
+  const auto fit = diagnose::fit_together(log.effects, log.residual, weight, away, 1);
+  const Eigen::VectorXd regimes =
+      diagnose::regime_error(log.effects, log.residual, weight, away, 1, diagnose::regime_splits(log.data, away));
+  // Compared whatever the support, the fast half's fit made the stated error 3e11 N m.
+  EXPECT_NEAR(fit.theta[1], kExcess, 3 * fit.theta_error[1]);
+  EXPECT_LE(regimes[1], 5 * fit.theta_error[1]) << "fs1 " << fit.theta[1] << " +- " << fit.theta_error[1];
+  EXPECT_LE(regimes[0], 3 * fit.theta_error[0] + 1e-12);
+}
+
 }  // namespace
 }  // namespace dyncc::test

@@ -103,10 +103,6 @@ double shrink_away(const Candidate& c, const Eigen::VectorXd& baseline, const Ei
   return before > 0 ? 1.0 - after / before : 0.0;
 }
 
-bool is_friction(const Effect& e) {
-  return e.family == "coulomb_friction" || e.family == "viscous_friction" || e.family == "stribeck_friction";
-}
-
 // Effects that must also explain residual where the velocity is away from zero: friction, and a
 // transmission read on the motor side (its shift of the estimated velocity moves where the model's
 // friction turns over, so near reversals it fits how a plant's friction turns over: an effect-free
