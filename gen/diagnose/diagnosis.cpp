@@ -103,6 +103,10 @@ double shrink_away(const Candidate& c, const Eigen::VectorXd& baseline, const Ei
   return before > 0 ? 1.0 - after / before : 0.0;
 }
 
+bool is_friction(const Effect& e) {
+  return e.family == "coulomb_friction" || e.family == "viscous_friction" || e.family == "stribeck_friction";
+}
+
 // Effects that must also explain residual where the velocity is away from zero: friction, and a
 // transmission read on the motor side (its shift of the estimated velocity moves where the model's
 // friction turns over, so near reversals it fits how a plant's friction turns over: an effect-free
@@ -1139,20 +1143,23 @@ bool clearly_above(const Candidate& c, const Candidate& mine) {
 
 }  // namespace
 
+FittedColumns fitted_columns(const std::vector<Effect>& effects, const Eigen::VectorXd& away) {
+  Eigen::Index columns = 0;
+  for (const Effect& e : effects) columns += e.columns.cols();
+  FittedColumns out{Eigen::MatrixXd(away.size(), columns), Eigen::MatrixXd::Ones(away.size(), columns)};
+  Eigen::Index at = 0;
+  for (const Effect& e : effects) {
+    out.all.middleCols(at, e.columns.cols()) = e.columns;
+    if (is_friction(e)) out.fitted.middleCols(at, e.columns.cols()).array().colwise() *= away.array();
+    at += e.columns.cols();
+  }
+  return out;
+}
+
 CrossValidation fit_together(const std::vector<Effect>& effects, const Eigen::VectorXd& residual,
                              const Eigen::VectorXd& weight, const Eigen::VectorXd& away, Eigen::Index n,
                              const Eigen::VectorXd* rows, bool unbiased) {
-  Eigen::Index columns = 0;
-  for (const Effect& e : effects) columns += e.columns.cols();
-  // `fitted` (0 or 1 per row and column): where each column is fitted on.
-  Eigen::MatrixXd all(residual.size(), columns), fitted(residual.size(), columns);
-  fitted.setOnes();
-  Eigen::Index at = 0;
-  for (const Effect& e : effects) {
-    all.middleCols(at, e.columns.cols()) = e.columns;
-    if (is_friction(e)) fitted.middleCols(at, e.columns.cols()).array().colwise() *= away.array();
-    at += e.columns.cols();
-  }
+  auto [all, fitted] = fitted_columns(effects, away);
   if (rows != nullptr) fitted.array().colwise() *= rows->array();
   Eigen::MatrixXd fitted_on = all.cwiseProduct(fitted);
   // Then again without the rows near zero velocity of a joint whose held-out residual there is

@@ -62,6 +62,14 @@ struct Diagnosis {
 
 Diagnosis diagnose(const Dataset& data, const pipeline::Derivation& derivation);
 
+/// The effects' columns side by side (`all`) and where fit_together fits each (`fitted`, 0 or 1
+/// per row and column): a friction's on the rows away from zero velocity (`away`), every other
+/// column on all rows.
+struct FittedColumns {
+  Eigen::MatrixXd all, fitted;
+};
+FittedColumns fitted_columns(const std::vector<Effect>& effects, const Eigen::VectorXd& away);
+
 /// Effects fitted together on the residual (blocked cross-validation with the per-joint weights):
 /// friction columns are fitted where the velocity is away from zero (`away`) and predict on every
 /// row. Near zero a log's friction turns over in its own way, which would bend a Coulomb term

@@ -54,12 +54,6 @@ inline constexpr double kBacklashTurnOver = 0.1;
 /// description wrong. The bench draws within it, the diagnosis refuses fits beyond it.
 inline constexpr double kLargestDeflection = 0.05;
 
-/// Whether the effect is a joint friction (Coulomb, viscous, Stribeck): fitted only where its
-/// joints' velocity is away from zero (away_from_zero_velocity), where friction is a function of it.
-inline bool is_friction(const Effect& e) {
-  return e.family == "coulomb_friction" || e.family == "viscous_friction" || e.family == "stribeck_friction";
-}
-
 /// The payload link: the deepest link without children (ties: the heaviest), where a tool or a
 /// hook carries a load.
 int payload_link(const pipeline::Derivation& derivation);

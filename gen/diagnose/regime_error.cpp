@@ -52,23 +52,17 @@ std::vector<RegimeSplit> regime_splits(const Dataset& d, const Eigen::VectorXd& 
 Eigen::VectorXd regime_error(const std::vector<Effect>& effects, const Eigen::VectorXd& residual,
                              const Eigen::VectorXd& weight, const Eigen::VectorXd& away, Eigen::Index n,
                              const std::vector<RegimeSplit>& splits) {
-  Eigen::Index columns = 0;
-  for (const Effect& e : effects) columns += e.columns.cols();
-  Eigen::MatrixXd all(residual.size(), columns);
-  Eigen::Index at = 0;
-  for (const Effect& e : effects) {
-    all.middleCols(at, e.columns.cols()) = e.columns;
-    if (is_friction(e)) all.middleCols(at, e.columns.cols()).array().colwise() *= away.array();  // as fitted
-    at += e.columns.cols();
-  }
+  const FittedColumns fitted = fitted_columns(effects, away);
+  const Eigen::Index columns = fitted.all.cols();
+  const Eigen::MatrixXd squares = fitted.all.cwiseProduct(fitted.fitted).array().square().matrix();  // as fitted
   const Eigen::VectorXd w2 = stacked_weights(weight, residual.size()).array().square();
-  const Eigen::RowVectorXd whole = w2.transpose() * all.array().square().matrix();
+  const Eigen::RowVectorXd whole = w2.transpose() * squares;
   Eigen::VectorXd error = Eigen::VectorXd::Zero(columns);
   for (const RegimeSplit& split : splits) {
     const CrossValidation lower = fit_together(effects, residual, weight, away, n, &split.lower);
     const CrossValidation upper = fit_together(effects, residual, weight, away, n, &split.upper);
-    const Eigen::RowVectorXd in_lower = w2.cwiseProduct(split.lower).transpose() * all.array().square().matrix();
-    const Eigen::RowVectorXd in_upper = w2.cwiseProduct(split.upper).transpose() * all.array().square().matrix();
+    const Eigen::RowVectorXd in_lower = w2.cwiseProduct(split.lower).transpose() * squares;
+    const Eigen::RowVectorXd in_upper = w2.cwiseProduct(split.upper).transpose() * squares;
     for (Eigen::Index k = 0; k < columns; ++k) {
       // A half where the column is next to nothing says nothing about its coefficient (a
       // Stribeck excess, which fades within a few tenths of a rad/s, in the fast half): its fit
