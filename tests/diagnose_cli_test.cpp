@@ -320,6 +320,20 @@ TEST(DiagnoseCommand, TeleoperationStribeckScaleIsChosenByAFitWhereTheJointMoves
   expect_stribeck(d, 1, excess, 0.1);  // the plant's own scale
 }
 
+// Blind bench seed 107, case 21: a Stribeck excess of joint 3 (21 % of the torque) on the MuJoCo
+// plant's tele-operation log at 200 Hz. The plant sticks in its holds, where the torque is anywhere
+// within the static friction's band (+0.17 to +0.20 N m in the holds after the joint rose, +0.02
+// in a 26 s hold after it fell); a contact and the inertial parameters fitted those holds' levels,
+// and a contact was named. Once a friction is evident where a joint moves and its holds stay worse
+// than its motion, the selection does not score those holds.
+TEST(DiagnoseCommand, HoldsThatKeepAStaticFrictionDoNotChooseTheEffect) {
+  const double excess = 0.2091264189568471;
+  const nlohmann::json d =
+      diagnose_excited("teleop_stribeck_holds", effects_file_of({joint_effect("stribeck_friction", 3, "fs", excess)}),
+                       "--plant mujoco --trajectory teleop --rate 200 --seed 107021");
+  expect_stribeck(d, 3, excess);
+}
+
 // Blind bench seed 83, case 24: a Stribeck excess of joint 2 (10 % of the torque) beside a table
 // touched by the hook, the rigid plant's Fourier log at 200 Hz. Joint 2 barely moves in two of the
 // five folds, so the Stribeck friction's interval where it moves is wide (its shrink there 92, 85,

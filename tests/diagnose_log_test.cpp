@@ -10,6 +10,7 @@
 
 #include "cli_support.hpp"
 #include "diagnose/column_filter.hpp"
+#include "diagnose/dataset.hpp"
 #include "diagnose/joint_log.hpp"
 #include "diagnose/signals.hpp"
 
@@ -130,6 +131,34 @@ TEST(DiagnoseSignals, ColumnsFilteredTogetherAreEachFilteredAlone) {
   EXPECT_NEAR(amplitude(1), 1.0, 0.005);
   const double r = std::tan(std::numbers::pi * 5 * cutoff / rate) / std::tan(std::numbers::pi * cutoff / rate);
   EXPECT_NEAR(amplitude(2), 1.0 / (1.0 + std::pow(r, 4)), 0.02 / (1.0 + std::pow(r, 4)));  // 25 samples a period
+}
+
+// A hold is a stretch near zero velocity of at least kLongRest within one log: a reversal's pass
+// through zero is not, nor two short stretches that meet only across the end of a log.
+TEST(DiagnoseSignals, LongRestsAreHoldsOfASecondOrMoreWithinOneLog) {
+  diagnose::Dataset d;
+  d.n = 2;
+  d.step = 0.1;
+  constexpr int kRows = 100;  // two logs of 5 s each, 10 rows a second
+  d.analysis_t.resize(kRows);
+  for (int r = 0; r < kRows; ++r) {
+    d.analysis_t[r] = (r % 50) * d.step;
+    d.analysis_log.push_back(r / 50);
+  }
+  Eigen::VectorXd away = Eigen::VectorXd::Ones(kRows * d.n);
+  auto rest = [&](int joint, int begin, int end) {
+    for (int r = begin; r < end; ++r) away[r * d.n + joint] = 0;
+  };
+  rest(0, 10, 22);  // joint 1: a hold of 1.2 s
+  rest(0, 30, 33);  // ... a reversal of 0.3 s
+  rest(0, 44, 56);  // ... 0.6 s at the end of log 1 and 0.6 s at the start of log 2
+  rest(1, 60, 70);  // joint 2: exactly 1 s (ten rows of 0.1 s)
+  rest(1, 80, 89);  // ... 0.9 s
+  const Eigen::VectorXd rests = diagnose::in_long_rests(d, away);
+  for (int r = 0; r < kRows; ++r) {
+    EXPECT_EQ(rests[r * d.n], r >= 10 && r < 22 ? 1.0 : 0.0) << "joint 1, row " << r;
+    EXPECT_EQ(rests[r * d.n + 1], r >= 60 && r < 70 ? 1.0 : 0.0) << "joint 2, row " << r;
+  }
 }
 
 }  // namespace

@@ -58,6 +58,9 @@ struct Diagnosis {
   std::vector<Effect> accepted_effects;
   Eigen::VectorXd weight;
   Eigen::VectorXd away;  // away_from_zero_velocity of the data: where friction columns are fitted
+  // 1 on the stacked rows the selection scores its candidates on: all but the holds (in_long_rests)
+  // of joints where a friction is evident and its static part holds at rest (see diagnose).
+  Eigen::VectorXd scored;
 };
 
 Diagnosis diagnose(const Dataset& data, const pipeline::Derivation& derivation);
