@@ -10,8 +10,8 @@
 
 #include "cli_support.hpp"
 #include "diagnose/column_filter.hpp"
-#include "diagnose/dataset.hpp"
 #include "diagnose/joint_log.hpp"
+#include "diagnose/long_rests.hpp"
 #include "diagnose/signals.hpp"
 
 namespace dyncc::test {

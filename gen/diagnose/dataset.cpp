@@ -175,29 +175,6 @@ Eigen::VectorXd away_from_zero_velocity(const Dataset& d) {
   return (leak.array().abs() <= kBandLeak).cast<double>().matrix();
 }
 
-Eigen::VectorXd in_long_rests(const Dataset& d, const Eigen::VectorXd& away) {
-  const Eigen::Index rows = d.rows(), n = d.n;
-  Eigen::VectorXd out = Eigen::VectorXd::Zero(rows * n);
-  for (Eigen::Index j = 0; j < n; ++j) {
-    for (Eigen::Index begin = 0; begin < rows;) {
-      if (away[begin * n + j] > 0) {
-        ++begin;
-        continue;
-      }
-      Eigen::Index end = begin;
-      while (end < rows && away[end * n + j] == 0 &&
-             d.analysis_log[static_cast<std::size_t>(end)] == d.analysis_log[static_cast<std::size_t>(begin)]) {
-        ++end;
-      }
-      if (d.analysis_t[end - 1] - d.analysis_t[begin] + d.step >= kLongRest) {
-        for (Eigen::Index r = begin; r < end; ++r) out[r * n + j] = 1;
-      }
-      begin = end;
-    }
-  }
-  return out;
-}
-
 Eigen::VectorXd torque_weights(const Eigen::VectorXd& torque_rms) {
   return torque_rms.cwiseMax(1e-3 * torque_rms.maxCoeff() + 1e-12).cwiseInverse();
 }

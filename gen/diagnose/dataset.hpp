@@ -109,14 +109,6 @@ inline constexpr double kTurnOverBand = 0.03;  // rad/s: regularised or sigmoid 
 inline constexpr double kBandLeak = 0.05;
 Eigen::VectorXd away_from_zero_velocity(const Dataset& d);
 
-/// Per stacked analysis row (A*n): 1 where joint i is near zero velocity (`away` 0) in a stretch
-/// of at least kLongRest within one log: a hold, where a static friction can keep any torque
-/// within its band, rather than a reversal, which passes through the band in a fraction of a
-/// second (on the bench's Fourier logs no stretch lasts 1 s; on its tele-operation logs 90 % of
-/// the rows near zero lie in stretches of 1 s or more).
-inline constexpr double kLongRest = 1.0;  // s
-Eigen::VectorXd in_long_rests(const Dataset& d, const Eigen::VectorXd& away);
-
 /// Per-joint weights that make every joint count relative to its own torque: 1 / torque RMS (floored
 /// at 1e-3 of the largest, so a joint that carries nothing does not dominate).
 Eigen::VectorXd torque_weights(const Eigen::VectorXd& torque_rms);

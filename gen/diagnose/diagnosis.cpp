@@ -13,6 +13,7 @@
 #include "diagnose/contact_effect.hpp"
 #include "diagnose/crossval.hpp"
 #include "diagnose/gap.hpp"
+#include "diagnose/long_rests.hpp"
 #include "diagnose/plausibility.hpp"
 #include "diagnose/regime_error.hpp"
 
