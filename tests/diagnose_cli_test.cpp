@@ -334,6 +334,21 @@ TEST(DiagnoseCommand, HoldsThatKeepAStaticFrictionDoNotChooseTheEffect) {
   expect_stribeck(d, 3, excess);
 }
 
+// Blind bench seed 157, case 42: a torque gain of 1.055 on the Kraft's base joint, the rigid plant's
+// tele-operation log at 1 kHz. That joint's torque is nearly all its inertia's, so the gain's column
+// there is within 5 % of a rotor inertia's and each explains what the other does (57.5 and 57.3 %).
+// The gain's columns span the rotor inertia's, and were taken for the same explanation with more
+// freedom: "rotor_inertia" was read alone. Each spans the other on that joint, so each is named.
+TEST(DiagnoseCommand, EffectsTheLogCannotTellApartAreNamedTogether) {
+  const nlohmann::json d =
+      diagnose_excited("teleop_base_gain", effects_file_of({joint_effect("torque_gain", 1, "gain", 1.055031771868559)}),
+                       "--plant dyncc --trajectory teleop --rate 1000 --seed 157042");
+  const std::string verdict = d["verdict"]["effect"].get<std::string>();
+  EXPECT_NE(verdict.find("torque_gain"), std::string::npos) << verdict;
+  EXPECT_NE(verdict.find("rotor_inertia"), std::string::npos) << verdict;
+  EXPECT_EQ(d["verdict"]["joints"], nlohmann::json::array({1})) << d["verdict"].dump();
+}
+
 // Blind bench seed 83, case 24: a Stribeck excess of joint 2 (10 % of the torque) beside a table
 // touched by the hook, the rigid plant's Fourier log at 200 Hz. Joint 2 barely moves in two of the
 // five folds, so the Stribeck friction's interval where it moves is wide (its shrink there 92, 85,

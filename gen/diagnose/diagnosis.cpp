@@ -529,8 +529,16 @@ Eigen::Index columns_on(const Effect& e, const std::vector<int>& joints) {
                        [&](int j) { return std::find(joints.begin(), joints.end(), j) != joints.end(); });
 }
 
+Effect narrowed(const Effect& e, const std::vector<int>& joints);
+
 // " or B or C": the usable candidates as good as the leading one whose columns are not a superset
-// of the chosen ones (the same explanation) nor more than twice as many.
+// of the chosen ones (the same explanation with more freedom) nor more than twice as many. Where
+// each spans the other with as many columns (on the chosen joints), the log cannot tell them apart
+// and each is the other's alternative: on a Kraft tele-operation log whose base joint's torque is
+// nearly all its inertia's, a torque gain's column there is within 5 % of a rotor inertia's, and a
+// gain of 1.055 was read as a rotor inertia alone (blind seed 157 case 42). (A Stribeck friction
+// whose fade is nearly a sign at its scale spans a Coulomb friction and is spanned by it, but with
+// a column more: the same explanation with more freedom still.)
 template <typename Usable>
 std::string alternatives(const Candidate& chosen, const Candidate& top, const std::vector<const Candidate*>& order,
                          Usable usable, Eigen::Index offset, const Eigen::VectorXd& torque_rms,
@@ -542,8 +550,12 @@ std::string alternatives(const Candidate& chosen, const Candidate& top, const st
   joints.erase(std::unique(joints.begin(), joints.end()), joints.end());
   for (const Candidate* c : order) {
     if (c == &chosen || !usable(c) || !as_good_as(*c, top)) continue;
-    if (spans(c->effect->columns, chosen.effect->columns)) continue;
-    if (!joints.empty() && per_joint(*c->effect)) {
+    const bool on_joints = !joints.empty() && per_joint(*c->effect);
+    if (spans(c->effect->columns, chosen.effect->columns)) {
+      const Eigen::MatrixXd theirs = on_joints ? narrowed(*c->effect, joints).columns : c->effect->columns;
+      if (theirs.cols() != chosen.effect->columns.cols() || !spans(chosen.effect->columns, theirs)) continue;
+    }
+    if (on_joints) {
       // Another per-joint effect is an alternative where it acts on the same joints, counted
       // there: the Coulomb friction of six joints against the torque gain of joint 1 it ties with
       // is one column; Coulomb friction of joints 1-3 is not an alternative to a viscous friction of
