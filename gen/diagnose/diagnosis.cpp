@@ -1079,22 +1079,37 @@ void refit_together(Diagnosis& out, const Eigen::VectorXd& r0, const Eigen::Vect
   out.final_after = joint_rms(joint.cv.heldout, n);
 }
 
-// 1 on every row but those near zero velocity (`away` 0) of a joint whose held-out mean square
-// there is over kStaticFrictionRatio times that away from zero (see fit_together).
+// Per joint, whether the held-out mean square on its rows at rest is over kStaticFrictionRatio
+// times that on its rows away from zero velocity (`away` 1): a static friction held at rest. The
+// rows at rest are those near zero velocity (`away` 0), or only the holds among them where `rests`
+// is given (in_long_rests).
+std::vector<bool> worse_at_rest(const Eigen::VectorXd& heldout, const Eigen::VectorXd& away,
+                                const Eigen::VectorXd* rests, Eigen::Index n) {
+  Eigen::VectorXd moving_square = Eigen::VectorXd::Zero(n), rest_square = moving_square;
+  Eigen::VectorXd moving_rows = moving_square, rest_rows = moving_square;
+  for (Eigen::Index r = 0; r < heldout.size(); ++r) {
+    if (away[r] > 0) {
+      moving_square[r % n] += heldout[r] * heldout[r];
+      moving_rows[r % n] += 1;
+    } else if (rests == nullptr || (*rests)[r] > 0) {
+      rest_square[r % n] += heldout[r] * heldout[r];
+      rest_rows[r % n] += 1;
+    }
+  }
+  std::vector<bool> worse(static_cast<std::size_t>(n), false);
+  for (Eigen::Index j = 0; j < n; ++j) {
+    worse[static_cast<std::size_t>(j)] =
+        moving_rows[j] > 0 && rest_rows[j] > 0 &&
+        rest_square[j] / rest_rows[j] > kStaticFrictionRatio * moving_square[j] / moving_rows[j];
+  }
+  return worse;
+}
+
+// 1 on every row but those near zero velocity (`away` 0) of a joint worse at rest (see
+// fit_together).
 Eigen::VectorXd rows_without_static_friction(const Eigen::VectorXd& heldout, const Eigen::VectorXd& away,
                                              Eigen::Index n) {
-  Eigen::VectorXd away_square = Eigen::VectorXd::Zero(n), near_square = Eigen::VectorXd::Zero(n);
-  Eigen::VectorXd away_rows = Eigen::VectorXd::Zero(n), near_rows = Eigen::VectorXd::Zero(n);
-  for (Eigen::Index r = 0; r < heldout.size(); ++r) {
-    (away[r] > 0 ? away_square : near_square)[r % n] += heldout[r] * heldout[r];
-    (away[r] > 0 ? away_rows : near_rows)[r % n] += 1;
-  }
-  std::vector<bool> holds(static_cast<std::size_t>(n), false);
-  for (Eigen::Index j = 0; j < n; ++j) {
-    holds[static_cast<std::size_t>(j)] =
-        away_rows[j] > 0 && near_rows[j] > 0 &&
-        near_square[j] / near_rows[j] > kStaticFrictionRatio * away_square[j] / away_rows[j];
-  }
+  const std::vector<bool> holds = worse_at_rest(heldout, away, nullptr, n);
   Eigen::VectorXd kept = Eigen::VectorXd::Ones(heldout.size());
   for (Eigen::Index r = 0; r < heldout.size(); ++r) {
     if (away[r] == 0 && holds[static_cast<std::size_t>(r % n)]) kept[r] = 0;
@@ -1159,7 +1174,7 @@ NoiseDraws torque_noise_of(const std::vector<Effect>& effects, const Eigen::Matr
 // Marks in `holds_static` (kept from step to step) the joints whose holds (`rests`, in_long_rests)
 // hold a static friction: a friction candidate evident where the joint moves (plausible,
 // significant there and removing kAcceptShrink of it) leaves the joint's holds worse, in held-out
-// mean square, than its motion (over kStaticFrictionRatio, as rows_without_static_friction). In a
+// mean square, than its motion (worse_at_rest, as rows_without_static_friction). In a
 // hold such a friction keeps any torque within its band, and what the torque is there depends on
 // how the joint came to rest, not on anything a candidate can model: effects that fit a few holds'
 // levels (a contact or the inertial parameters, each hold at one configuration) were chosen over
@@ -1169,23 +1184,9 @@ void mark_static_holds(const std::map<std::string, Candidate>& best, const Eigen
                        const Eigen::VectorXd& rests, Eigen::Index n, std::vector<bool>& holds_static) {
   for (const auto& [name, c] : best) {
     if (!c.plausible || !is_friction(*c.effect) || !(c.away_low > 0.0) || c.away_shrink < kAcceptShrink) continue;
-    Eigen::VectorXd moving_square = Eigen::VectorXd::Zero(n), rest_square = moving_square;
-    Eigen::VectorXd moving_rows = moving_square, rest_rows = moving_square;
-    const Eigen::VectorXd& heldout = c.heldout_away();
-    for (Eigen::Index r = 0; r < heldout.size(); ++r) {
-      if (away[r] > 0) {
-        moving_square[r % n] += heldout[r] * heldout[r];
-        moving_rows[r % n] += 1;
-      } else if (rests[r] > 0) {
-        rest_square[r % n] += heldout[r] * heldout[r];
-        rest_rows[r % n] += 1;
-      }
-    }
+    const std::vector<bool> worse = worse_at_rest(c.heldout_away(), away, &rests, n);
     for (const int j : c.away_joints) {
-      if (moving_rows[j] > 0 && rest_rows[j] > 0 &&
-          rest_square[j] / rest_rows[j] > kStaticFrictionRatio * moving_square[j] / moving_rows[j]) {
-        holds_static[static_cast<std::size_t>(j)] = true;
-      }
+      if (worse[static_cast<std::size_t>(j)]) holds_static[static_cast<std::size_t>(j)] = true;
     }
   }
 }
