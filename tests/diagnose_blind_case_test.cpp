@@ -342,5 +342,18 @@ TEST(BlindBenchCase, PumaViscousFrictionDoesNotGiveItsJointToASpringThatCannotTa
               {{"fv1", viscous.size, 0.1 * viscous.size}});
 }
 
+// Case 49 of the blind seed 173 (PUMA 560, 200 Hz): a Stribeck friction of joint 5 (20 % of the
+// torque) beside a viscous friction of joint 4, half as large. Fitted over both joints at each
+// velocity scale, the Stribeck columns of joint 4 bent to the viscous friction there and the whole
+// candidate was implausible at every scale (94.7 % held out), so it never led, and the viscous
+// friction was named first. A profile effect implausible on some joints only is judged on the
+// others at each of its points.
+TEST(BlindBenchCase, PumaStribeckImplausibleOnAViscousJointIsJudgedOnItsOwn) {
+  const Injection stribeck{.effect = "stribeck_friction", .joint = 4, .size = 2.299864106618789};
+  const Injection viscous{.effect = "viscous_friction", .joint = 3, .size = 0.39662267073575475};
+  expect_case(diagnosed("puma560", {stribeck, viscous}, 200, 173U * 1000U + 49U), "stribeck_friction", {5},
+              {{"fs5", stribeck.size, 0.1 * stribeck.size}, {"fv4", viscous.size, 0.1 * viscous.size}});
+}
+
 }  // namespace
 }  // namespace dyncc::test
