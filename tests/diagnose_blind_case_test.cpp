@@ -355,5 +355,18 @@ TEST(BlindBenchCase, PumaStribeckImplausibleOnAViscousJointIsJudgedOnItsOwn) {
               {{"fs5", stribeck.size, 0.1 * stribeck.size}, {"fv4", viscous.size, 0.1 * viscous.size}});
 }
 
+// Case 49 of the blind seed 179 (PUMA 560, 81 Hz): a Coulomb friction of 2.76 N m on joint 1, an
+// exact sign in the log, beside an offset of joint 3. A Stribeck excess accepted after the gain
+// that ties with the friction took the gain's place, and chosen again beside the other effects
+// its scale went to 0.02 rad/s: fs1 0.72, an excess that fades within the band near zero velocity
+// and so describes only how sharply the plant's friction turns over. Such an excess is not a
+// Stribeck friction; the verdict is the Coulomb friction.
+TEST(BlindBenchCase, PumaCoulombFrictionTurningOverSharplyIsNotAStribeckFriction) {
+  const Injection coulomb{.effect = "coulomb_friction", .joint = 0, .size = 2.7629870434165418};
+  const Injection offset{.effect = "position_offset", .joint = 2, .size = 0.05731188942111526};
+  expect_case(diagnosed("puma560", {coulomb, offset}, 81, 179U * 1000U + 49U), "coulomb_friction", {1},
+              {{"fc1", coulomb.size, 0.1 * coulomb.size}, {"offset3", offset.size, 0.1 * offset.size}});
+}
+
 }  // namespace
 }  // namespace dyncc::test
