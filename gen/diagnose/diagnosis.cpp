@@ -1223,12 +1223,6 @@ bool clearly_above(const Candidate& c, const Candidate& mine) {
   return c.shrink > mine.shrink + 0.5 * (mine.high - mine.low) + 0.01;
 }
 
-// Whether the per-joint effects `a` and `b` have no joint in common.
-bool on_other_joints(const Effect& a, const Effect& b) {
-  return std::none_of(a.joint_of.begin(), a.joint_of.end(),
-                      [&](int j) { return std::find(b.joint_of.begin(), b.joint_of.end(), j) != b.joint_of.end(); });
-}
-
 // The verdict: the first selected effect, else `unknown` where structure is left and `none` where
 // it is not.
 void set_verdict(Diagnosis& out, Eigen::Index n) {
@@ -1551,10 +1545,15 @@ Diagnosis diagnose(const Dataset& d, const pipeline::Derivation& derivation) {
             return usable(c) && c->effect->family != pick->effect->family &&
                    !spans(c->effect->columns, mine.effect->columns);
           });
-          // ... counted on its own joints too (seed 67 case 19). One that keeps none leads only if a
-          // simpler effect took them (Coulomb for Stribeck, seed 71 case 14), not `mine` (seed 73 case 49).
-          auto leads_on_its_own_joints = [&](const Candidate& c) {
-            if (!per_joint(*c.effect)) return true;
+          // ... counted on its own joints too (seed 67 case 19). A set of the whole arm (the
+          // inertial parameters, a contact) leads only when it explains clearly more, since its many
+          // columns also take up part of `mine`'s effect (a gain of the Kraft's joint 1, 79 %, and
+          // the inertial parameters, 83 %: seed 167 case 54). A per-joint one that keeps none of its
+          // joints leads only if a simpler effect took them (Coulomb for Stribeck, seed 71 case 14),
+          // not `mine` (seed 73 case 49).
+          auto leads = [&](const Candidate& c) {
+            if (!per_joint(*c.effect)) return clearly_above(c, mine);
+            if (!(c.shrink > mine.shrink + 0.01)) return false;
             const RankedEffect theirs = describe(c, before, accepted.cols(), out.gap.torque_rms);
             bool lost_to_simpler = false;
             const std::vector<int> their_joints = own_joints_of(c, theirs, &lost_to_simpler);
@@ -1571,16 +1570,8 @@ Diagnosis diagnose(const Dataset& d, const pipeline::Derivation& derivation) {
             // clearly above it, whole and on its own joints (a rotor inertia and a spring of the
             // Panda's joint 4, 60 % and 63 %, are "rotor_inertia or joint_elasticity"; seed 43
             // case 44).
-            if (on_other_joints(*theirs_alone.effect, *mine.effect)) return theirs_alone.shrink > mine.shrink + 0.01;
+            if (columns_on(*mine.effect, their_joints) == 0) return theirs_alone.shrink > mine.shrink + 0.01;
             return clearly_above(c, mine) && clearly_above(theirs_alone, mine);
-          };
-          // A per-joint candidate is judged on its own joints (above); a set of the whole arm (the
-          // inertial parameters, a contact) leads only when it explains clearly more, since its many
-          // columns also take up part of `mine`'s effect (a gain of the Kraft's joint 1, 79 %, and
-          // the inertial parameters, 83 %: seed 167 case 54).
-          auto leads = [&](const Candidate& c) {
-            return per_joint(*c.effect) ? c.shrink > mine.shrink + 0.01 && leads_on_its_own_joints(c)
-                                        : clearly_above(c, mine);
           };
           if (!of_a_pair && next != order.end() && leads(**next)) continue;
           pick = &mine;
