@@ -384,6 +384,22 @@ TEST(DiagnoseCommand, CoulombFrictionClearlyWorseWhereTheJointMovesIsNotAsGoodAs
   expect_stribeck(d, 2, excess);
 }
 
+// Blind bench seed 181, case 48: the hook touches a table 9.5 mm above the reference's lowest hook
+// point, the rigid plant's Fourier log at 500 Hz: in 1 % of the rows, at 49 s and 57 s, both in
+// the last of five even blocks. A fit on the other blocks had no touch to learn from, so no contact
+// was confirmed held out (`unknown`: the best point 41.5 %, interval [-193, 276] %). The blocks'
+// edge moves between the two touches, and each predicts the other.
+TEST(DiagnoseCommand, TouchesInOneEvenBlockAreHeldOutInTwo) {
+  const nlohmann::json d =
+      diagnose_excited("fourier_two_touches",
+                       effects_file_of({R"({"effect": "contact", "parameters": {"depth": 0.009480352040725636}})"}),
+                       "--plant dyncc --trajectory fourier --rate 500 --seed 181048");
+  EXPECT_FALSE(d["heldout_blocks"]["even"].get<bool>());
+  EXPECT_EQ(d["verdict"]["effect"], "contact") << d["verdict"].dump();
+  ASSERT_FALSE(d["selected"].empty());
+  EXPECT_GT(d["selected"][0]["shrink_interval"][0].get<double>(), 0.0) << d["selected"][0].dump();
+}
+
 // Blind bench seed 37, case 9: a Stribeck excess of joint 3 (20 % of the torque) beside a 26.6 ms
 // sensor delay, the MuJoCo plant's tele-operation task at 500 Hz. The inertial parameters (first)
 // and the delay were accepted; in the joint refit each explained all the other did, and judged

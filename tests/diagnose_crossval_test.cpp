@@ -57,13 +57,13 @@ void expect_near_relative(const Eigen::VectorXd& got, const Eigen::VectorXd& wan
 
 // Each fold's parameters are the QR fit on `fitted_on`'s other folds' rows, and its held-out
 // residual is what those parameters leave on its own rows, predicted with E.
-void expect_folds_fitted_outside(const Problem& p, const Eigen::MatrixXd& fitted_on,
+void expect_folds_fitted_outside(const Problem& p, const Eigen::MatrixXd& fitted_on, const diagnose::Folds& folds,
                                  const diagnose::CrossValidation& cv) {
   ASSERT_EQ(cv.fold_end.size(), static_cast<std::size_t>(diagnose::kFolds));
   Eigen::Index begin = 0;
   for (int f = 0; f < diagnose::kFolds; ++f) {
     const Eigen::Index end = cv.fold_end[static_cast<std::size_t>(f)];
-    EXPECT_EQ(end, diagnose::fold_begin(p.samples, f + 1));
+    EXPECT_EQ(end, folds.end_of(f));
     const Eigen::VectorXd theta = fit_outside(p, fitted_on, begin, end);
     expect_near_relative(cv.theta_folds.col(f), theta);
     const Eigen::Index rows = (end - begin) * p.joints;
@@ -75,8 +75,9 @@ void expect_folds_fitted_outside(const Problem& p, const Eigen::MatrixXd& fitted
 
 TEST(DiagnoseCrossValidation, EachFoldIsTheLeastSquaresFitOnTheOtherFolds) {
   const Problem p = random_problem();
-  const diagnose::CrossValidation cv = diagnose::cross_validate(p.r, p.E, p.joints, p.weight);
-  expect_folds_fitted_outside(p, p.E, cv);
+  const diagnose::Folds folds = diagnose::Folds::even(p.samples);
+  const diagnose::CrossValidation cv = diagnose::cross_validate(p.r, p.E, p.joints, p.weight, folds);
+  expect_folds_fitted_outside(p, p.E, folds, cv);
   expect_near_relative(cv.theta, fit_outside(p, p.E, 0, 0));
   // The jackknife error from the folds' spread.
   const Eigen::VectorXd mean = cv.theta_folds.rowwise().mean();
@@ -90,8 +91,21 @@ TEST(DiagnoseCrossValidation, EachFoldIsTheLeastSquaresFitOnTheOtherFolds) {
 // With `fitted_on`, the folds fit on its columns and predict with E's.
 TEST(DiagnoseCrossValidation, FitsOnOneMatrixAndPredictsWithTheOther) {
   const Problem p = random_problem();
-  const diagnose::CrossValidation cv = diagnose::cross_validate(p.r, p.E, p.joints, p.weight, &p.F);
-  expect_folds_fitted_outside(p, p.F, cv);
+  const diagnose::Folds folds = diagnose::Folds::even(p.samples);
+  const diagnose::CrossValidation cv = diagnose::cross_validate(p.r, p.E, p.joints, p.weight, folds, &p.F);
+  expect_folds_fitted_outside(p, p.F, folds, cv);
+}
+
+// Blocks of unequal length (where fold_plan places them) are held out just the same.
+TEST(DiagnoseCrossValidation, BlocksOfUnequalLengthAreEachFittedOnTheOthers) {
+  const Problem p = random_problem();
+  const diagnose::Folds even = diagnose::Folds::even(p.samples);
+  diagnose::Folds folds = even;
+  folds.begin[1] = even.begin[1] / 2;
+  folds.begin[3] = (even.begin[3] + even.begin[4]) / 2;
+  ASSERT_NE(folds, even);
+  const diagnose::CrossValidation cv = diagnose::cross_validate(p.r, p.E, p.joints, p.weight, folds, &p.F);
+  expect_folds_fitted_outside(p, p.F, folds, cv);
 }
 
 // Errors in variables, with the closed forms of the textbook case: y = theta x + beta z + e, the
@@ -133,10 +147,12 @@ TEST(DiagnoseCrossValidation, NoiseDrawsTakeTheErrorsInVariablesBiasOff) {
   const ErrorsInVariables p = errors_in_variables(theta, beta, a, sigma_e, sigma_v);
   const Eigen::VectorXd weight = Eigen::VectorXd::Ones(1);
   const double biased = (theta + a * sigma_e * sigma_e) / (1.0 + a * a * sigma_e * sigma_e + sigma_v * sigma_v);
-  const diagnose::CrossValidation plain = diagnose::cross_validate(p.y, p.E, 1, weight);
+  const diagnose::CrossValidation plain =
+      diagnose::cross_validate(p.y, p.E, 1, weight, diagnose::Folds::even(p.y.size()));
   EXPECT_NEAR(plain.theta[0], biased, 0.03);  // 1.167: the bias is real
   EXPECT_NEAR(plain.theta[1], beta, 0.03);
-  const diagnose::CrossValidation corrected = diagnose::cross_validate(p.y, p.E, 1, weight, nullptr, &p.noise);
+  const diagnose::CrossValidation corrected =
+      diagnose::cross_validate(p.y, p.E, 1, weight, diagnose::Folds::even(p.y.size()), nullptr, &p.noise);
   EXPECT_NEAR(corrected.theta[0], theta, 0.05);
   EXPECT_NEAR(corrected.theta[1], beta, 0.03);
   for (int f = 0; f < diagnose::kFolds; ++f) EXPECT_NEAR(corrected.theta_folds(0, f), theta, 0.1) << "fold " << f;
@@ -151,8 +167,10 @@ TEST(DiagnoseCrossValidation, NoiseDrawsTakeTheErrorsInVariablesBiasOff) {
 TEST(DiagnoseCrossValidation, NoiseThatSwampsAColumnLeavesThePlainFit) {
   const ErrorsInVariables p = errors_in_variables(2.0, -0.7, -1.0, 0.5, 1.2);
   const Eigen::VectorXd weight = Eigen::VectorXd::Ones(1);
-  const diagnose::CrossValidation plain = diagnose::cross_validate(p.y, p.E, 1, weight);
-  const diagnose::CrossValidation corrected = diagnose::cross_validate(p.y, p.E, 1, weight, nullptr, &p.noise);
+  const diagnose::CrossValidation plain =
+      diagnose::cross_validate(p.y, p.E, 1, weight, diagnose::Folds::even(p.y.size()));
+  const diagnose::CrossValidation corrected =
+      diagnose::cross_validate(p.y, p.E, 1, weight, diagnose::Folds::even(p.y.size()), nullptr, &p.noise);
   EXPECT_EQ(corrected.theta, plain.theta);
   EXPECT_EQ(corrected.heldout, plain.heldout);
 }

@@ -56,9 +56,9 @@ Eigen::VectorXd joint_rms(const Eigen::VectorXd& stacked, Eigen::Index joints, E
 }
 
 CrossValidation cross_validate(const Eigen::VectorXd& r, const Eigen::MatrixXd& E, Eigen::Index joints,
-                               const Eigen::VectorXd& weight, const Eigen::MatrixXd* fitted_on,
+                               const Eigen::VectorXd& weight, const Folds& folds, const Eigen::MatrixXd* fitted_on,
                                const NoiseDraws* noise) {
-  const Eigen::Index samples = r.size() / joints, k = E.cols();
+  const Eigen::Index k = E.cols();
   const Eigen::MatrixXd& F = fitted_on != nullptr ? *fitted_on : E;
   CrossValidation cv;
   cv.heldout = r;
@@ -70,7 +70,7 @@ CrossValidation cross_validate(const Eigen::VectorXd& r, const Eigen::MatrixXd& 
   Eigen::MatrixXd all_normal = Eigen::MatrixXd::Zero(k, k);
   Eigen::VectorXd all_moment = Eigen::VectorXd::Zero(k);
   for (int f = 0; f < kFolds; ++f) {
-    const Eigen::Index begin = fold_begin(samples, f), end = fold_begin(samples, f + 1);
+    const Eigen::Index begin = folds.begin_of(f), end = folds.end_of(f);
     cv.fold_end.push_back(end);
     normal[f] = Eigen::MatrixXd::Zero(k, k);
     moment[f] = Eigen::VectorXd::Zero(k);
@@ -98,8 +98,7 @@ CrossValidation cross_validate(const Eigen::VectorXd& r, const Eigen::MatrixXd& 
     std::vector<Eigen::VectorXd> noise_moment(kFolds, Eigen::VectorXd::Zero(k));
     Eigen::MatrixXd all_noise = Eigen::MatrixXd::Zero(k, k);
     for (int f = 0; f < kFolds; ++f) {
-      add_noise_share(*noise, joints, weight, fold_begin(samples, f), fold_begin(samples, f + 1), noise_normal[f],
-                      noise_moment[f]);
+      add_noise_share(*noise, joints, weight, folds.begin_of(f), folds.end_of(f), noise_normal[f], noise_moment[f]);
       all_noise += noise_normal[f];
     }
     const bool swamped = std::any_of(noise->at.begin(), noise->at.end(), [&](Eigen::Index c) {
@@ -113,7 +112,7 @@ CrossValidation cross_validate(const Eigen::VectorXd& r, const Eigen::MatrixXd& 
     }
   }
   for (int f = 0; f < kFolds; ++f) {
-    const Eigen::Index begin = fold_begin(samples, f), end = fold_begin(samples, f + 1);
+    const Eigen::Index begin = folds.begin_of(f), end = folds.end_of(f);
     const Eigen::VectorXd theta = solve(all_normal - normal[f], all_moment - moment[f], scale);
     cv.theta_folds.col(f) = theta;
     cv.heldout.segment(begin * joints, (end - begin) * joints) -=

@@ -12,6 +12,7 @@
 
 #include "diagnose/contact_effect.hpp"
 #include "diagnose/crossval.hpp"
+#include "diagnose/fold_plan.hpp"
 #include "diagnose/gap.hpp"
 #include "diagnose/long_rests.hpp"
 #include "diagnose/plausibility.hpp"
@@ -265,13 +266,13 @@ void set_shrink(Candidate& c, const Eigen::VectorXd& baseline, const Eigen::Vect
 }
 
 Candidate evaluate(const Effect& effect, const Eigen::MatrixXd& accepted, const Eigen::VectorXd& r0,
-                   const Eigen::VectorXd& baseline, const Eigen::VectorXd& weight, Eigen::Index n,
+                   const Eigen::VectorXd& baseline, const Eigen::VectorXd& weight, const Folds& folds, Eigen::Index n,
                    const Eigen::VectorXd* scored = nullptr) {
   Candidate c;
   c.effect = &effect;
   Eigen::MatrixXd e(r0.size(), accepted.cols() + effect.columns.cols());
   e << accepted, effect.columns;
-  c.cv = cross_validate(r0, e, n, weight);
+  c.cv = cross_validate(r0, e, n, weight, folds);
   set_shrink(c, baseline, weight, n, scored);
   c.after = joint_rms(c.cv.heldout, n);
   return c;
@@ -280,15 +281,15 @@ Candidate evaluate(const Effect& effect, const Eigen::MatrixXd& accepted, const 
 // A candidate as the search compares profile points: evaluated, and for a friction also its
 // shrink where the velocity is away from zero (what point_key reads, and acceptance asks of some).
 Candidate evaluate_point(const Effect& effect, const Eigen::MatrixXd& accepted, const Eigen::VectorXd& r0,
-                         const Eigen::VectorXd& baseline, const Eigen::VectorXd& weight, const Eigen::VectorXd& away,
-                         Eigen::Index n, const Eigen::VectorXd* scored = nullptr) {
-  Candidate c = evaluate(effect, accepted, r0, baseline, weight, n, scored);
+                         const Eigen::VectorXd& baseline, const Eigen::VectorXd& weight, const Folds& folds,
+                         const Eigen::VectorXd& away, Eigen::Index n, const Eigen::VectorXd* scored = nullptr) {
+  Candidate c = evaluate(effect, accepted, r0, baseline, weight, folds, n, scored);
   if (is_friction(effect)) {
     Eigen::MatrixXd columns(r0.size(), accepted.cols() + effect.columns.cols());
     columns << accepted, effect.columns;
     Eigen::MatrixXd fitted_on = columns;
     fitted_on.rightCols(effect.columns.cols()).array().colwise() *= away.array();
-    c.away_heldout = cross_validate(r0, columns, n, weight, &fitted_on).heldout;
+    c.away_heldout = cross_validate(r0, columns, n, weight, folds, &fitted_on).heldout;
   }
   if (judged_away_from_zero(effect)) c.away_shrink = shrink_away(c, baseline, weight, away, n);
   return c;
@@ -467,8 +468,8 @@ template <typename Acceptable, typename CanLead>
 const Candidate* first_of_a_smaller_pair(const Candidate* chosen, const std::vector<const Candidate*>& order,
                                          const std::map<std::string, Candidate>& best, Acceptable acceptable,
                                          CanLead can_lead, const Eigen::MatrixXd& accepted, const Eigen::VectorXd& r0,
-                                         const Eigen::VectorXd& baseline, const Eigen::VectorXd& weight, Eigen::Index n,
-                                         const Eigen::VectorXd& scored) {
+                                         const Eigen::VectorXd& baseline, const Eigen::VectorXd& weight,
+                                         const Folds& folds, Eigen::Index n, const Eigen::VectorXd& scored) {
   if (per_joint(*chosen->effect)) return chosen;
   const Eigen::Index size = chosen->effect->columns.cols();
   const double as_good = chosen->shrink - 0.5 * (chosen->high - chosen->low);
@@ -482,7 +483,7 @@ const Candidate* first_of_a_smaller_pair(const Candidate* chosen, const std::vec
           first_size + second.effect->columns.cols() >= size) {
         continue;
       }
-      const Candidate pair = evaluate(*second.effect, with_first, r0, baseline, weight, n, &scored);
+      const Candidate pair = evaluate(*second.effect, with_first, r0, baseline, weight, folds, n, &scored);
       if (pair.shrink < as_good || pair.low <= first->shrink) continue;
       // The pair's stronger member leads, even one that gave way to the set before (seed 43 case
       // 49: a PUMA torque gain of joint 2, narrowed, gave way to the inertial parameters, which
@@ -647,21 +648,21 @@ double half_point_spread(const Candidate& c) {
 Candidate narrowed_at_best_point(const Effect& chosen, const std::vector<int>& kept, const std::deque<Effect>& effects,
                                  const std::vector<std::string>& fitted, std::deque<Effect>& store,
                                  const Eigen::MatrixXd& accepted, const Eigen::VectorXd& r0,
-                                 const Eigen::VectorXd& baseline, const Eigen::VectorXd& weight,
+                                 const Eigen::VectorXd& baseline, const Eigen::VectorXd& weight, const Folds& folds,
                                  const Eigen::VectorXd& away, Eigen::Index n, const Eigen::VectorXd& scored) {
   std::optional<Candidate> own;
   std::optional<Candidate> best;
   for (const Effect& whole : effects) {
     if (chosen.profile_name.empty() || whole.name != chosen.name) continue;
     store.push_back(narrowed(without_fitted(whole, fitted), kept));
-    Candidate c = evaluate_point(store.back(), accepted, r0, baseline, weight, away, n, &scored);
+    Candidate c = evaluate_point(store.back(), accepted, r0, baseline, weight, folds, away, n, &scored);
     if (whole.profile == chosen.profile) own = c;
     if (!best || point_key(c) > point_key(*best)) best = std::move(c);
   }
   if (own && best && point_key(*best) <= point_key(*own) + half_point_spread(*own)) return *own;
   if (best) return *best;
   store.push_back(narrowed(chosen, kept));  // not a profile effect: as it is
-  return evaluate(store.back(), accepted, r0, baseline, weight, n, &scored);
+  return evaluate(store.back(), accepted, r0, baseline, weight, folds, n, &scored);
 }
 
 // Whether the joint fit `cv` of `effects` reads the static excess of effects[k] (a Stribeck
@@ -693,7 +694,8 @@ void coulomb_where_no_excess(Diagnosis& out, std::size_t k, const Eigen::VectorX
   const Effect& stribeck = out.accepted_effects[k];
   if (stribeck.name != "stribeck_friction") return;
   if (stribeck.profile > kTurnOverBand &&
-      holds_an_excess(out.accepted_effects, k, fit_together(out.accepted_effects, r0, weight, out.away, n))) {
+      holds_an_excess(out.accepted_effects, k,
+                      fit_together(out.accepted_effects, r0, weight, out.folds, out.away, n))) {
     return;
   }
   Effect coulomb = kept_columns(stribeck, [&](std::size_t c) { return stribeck.parameters[c].rfind("fc", 0) == 0; });
@@ -721,7 +723,7 @@ void rechoose_points(Diagnosis& out, const std::deque<Effect>& effects, const Ei
     const Effect chosen = out.accepted_effects[k];
     if (chosen.profile_name.empty() || !is_friction(chosen)) continue;
     auto error = [&]() {
-      const CrossValidation cv = fit_together(out.accepted_effects, r0, weight, out.away, n);
+      const CrossValidation cv = fit_together(out.accepted_effects, r0, weight, out.folds, out.away, n);
       double sum = 0;
       for (Eigen::Index r = 0; r < r0.size(); ++r) {
         const double w = out.away[r] * weight[r % n] * weight[r % n];
@@ -874,13 +876,13 @@ void hand_places_to_successors(Diagnosis& out, std::vector<bool>& gone, std::vec
 // instead; a whole-arm effect's columns are too entangled for that: a load's mass and moments
 // are each within their errors of zero where together they are not.)
 bool explained_by_the_others(const std::vector<Effect>& effects, std::size_t k, const CrossValidation& with,
-                             const Eigen::VectorXd& r0, const Eigen::VectorXd& weight, const Eigen::VectorXd& away,
-                             const Eigen::VectorXd& scored, Eigen::Index n) {
+                             const Eigen::VectorXd& r0, const Eigen::VectorXd& weight, const Folds& folds,
+                             const Eigen::VectorXd& away, const Eigen::VectorXd& scored, Eigen::Index n) {
   std::vector<Effect> others = effects;
   others.erase(others.begin() + static_cast<std::ptrdiff_t>(k));
   Candidate mine;
   mine.cv = with;
-  set_shrink(mine, fit_together(others, r0, weight, away, n).heldout, weight, n, &scored);
+  set_shrink(mine, fit_together(others, r0, weight, folds, away, n).heldout, weight, n, &scored);
   return mine.shrink < kAcceptShrink || mine.low <= 0.0;
 }
 
@@ -912,8 +914,8 @@ void drop_arm_effects_the_others_explain(Diagnosis& out, const Eigen::VectorXd& 
       kept.push_back(out.accepted_effects[i]);
     }
     if (kept.size() < 2) break;
-    const CrossValidation with = fit_together(kept, r0, weight, out.away, n);
-    gone[k] = explained_by_the_others(kept, mine, with, r0, weight, out.away, out.scored, n);
+    const CrossValidation with = fit_together(kept, r0, weight, out.folds, out.away, n);
+    gone[k] = explained_by_the_others(kept, mine, with, r0, weight, out.folds, out.away, out.scored, n);
   }
   drop_gone(out, gone, parts, weight, n);
 }
@@ -929,7 +931,9 @@ struct StepAlternative {
 // held-out residual.
 struct StepState {
   const Eigen::MatrixXd& accepted;
-  const Eigen::VectorXd &r0, &baseline, &weight, &away;
+  const Eigen::VectorXd &r0, &baseline, &weight;
+  const Folds& folds;
+  const Eigen::VectorXd& away;
   const Eigen::VectorXd& before;  // per joint, the held-out RMS so far
   const Gap& gap;
   const pipeline::Derivation& derivation;
@@ -947,7 +951,7 @@ std::vector<StepAlternative> per_joint_alternatives(const std::vector<const Cand
   for (const Candidate* c : named) {
     if (!per_joint(*c->effect)) continue;
     StepAlternative a{narrowed(*c->effect, joints), {}};
-    a.described = describe(evaluate(a.effect, s.accepted, s.r0, s.baseline, s.weight, n, &scored), s.before,
+    a.described = describe(evaluate(a.effect, s.accepted, s.r0, s.baseline, s.weight, s.folds, n, &scored), s.before,
                            s.accepted.cols(), s.gap.torque_rms);
     a.described.accepted = true;
     out.push_back(std::move(a));
@@ -987,7 +991,7 @@ void one_effect_for_two_steps(Diagnosis& out, const std::vector<std::vector<Step
                         [&](const StepAlternative& a) { return a.effect.family == alternative.family; });
         if (!within || !named_later || alternative.columns.cols() == 0) continue;
         if (!fitted) {
-          all.cv = fit_together(out.accepted_effects, r0, weight, out.away, n);
+          all.cv = fit_together(out.accepted_effects, r0, weight, out.folds, out.away, n);
           set_shrink(all, r0, weight, n, &out.scored);
           fitted = true;
         }
@@ -995,7 +999,7 @@ void one_effect_for_two_steps(Diagnosis& out, const std::vector<std::vector<Step
         merged[i] = alternative;
         merged.erase(merged.begin() + static_cast<std::ptrdiff_t>(k));
         Candidate one;
-        one.cv = fit_together(merged, r0, weight, out.away, n);
+        one.cv = fit_together(merged, r0, weight, out.folds, out.away, n);
         set_shrink(one, r0, weight, n, &out.scored);
         if (clearly_more(all, one) || one.low <= 0.0) continue;
         Eigen::Index at = 0;
@@ -1019,9 +1023,10 @@ void one_effect_for_two_steps(Diagnosis& out, const std::vector<std::vector<Step
 // of the parameters (97/21: a soft Kraft spring of 17.81 N m/rad read 20.58, a rotor inertia
 // beside it taking up the difference).
 void read_free_of_torque_noise(const std::vector<Effect>& effects, Candidate& joint, const Eigen::VectorXd& r0,
-                               const Eigen::VectorXd& weight, const Eigen::VectorXd& away, Eigen::Index n) {
+                               const Eigen::VectorXd& weight, const Folds& folds, const Eigen::VectorXd& away,
+                               Eigen::Index n) {
   if (std::none_of(effects.begin(), effects.end(), [](const Effect& e) { return e.torque_noise != nullptr; })) return;
-  const CrossValidation unbiased = fit_together(effects, r0, weight, away, n, nullptr, true);
+  const CrossValidation unbiased = fit_together(effects, r0, weight, folds, away, n, nullptr, true);
   joint.read_theta = unbiased.theta;
   joint.read_error = unbiased.theta_error;
 }
@@ -1037,7 +1042,7 @@ void refit_together(Diagnosis& out, const Eigen::VectorXd& r0, const Eigen::Vect
                     const std::vector<RegimeSplit>& splits, std::vector<Eigen::VectorXd> parts) {
   if (out.accepted_effects.empty()) return;
   drop_arm_effects_the_others_explain(out, r0, weight, n, parts);
-  auto fit = [&]() { return fit_together(out.accepted_effects, r0, weight, out.away, n); };
+  auto fit = [&]() { return fit_together(out.accepted_effects, r0, weight, out.folds, out.away, n); };
   Candidate joint;
   joint.cv = fit();
   joint.after = joint_rms(joint.cv.heldout, n);
@@ -1071,8 +1076,8 @@ void refit_together(Diagnosis& out, const Eigen::VectorXd& r0, const Eigen::Vect
   if (narrowed_any) joint.cv = fit();
   arm_rows_in_logged_torque(out.accepted_effects, joint.cv, fit, n);
   joint.after = joint_rms(joint.cv.heldout, n);
-  read_free_of_torque_noise(out.accepted_effects, joint, r0, weight, out.away, n);
-  joint.systematic = regime_error(out.accepted_effects, r0, weight, out.away, n, splits);
+  read_free_of_torque_noise(out.accepted_effects, joint, r0, weight, out.folds, out.away, n);
+  joint.systematic = regime_error(out.accepted_effects, r0, weight, out.folds, out.away, n, splits);
   joint.applied_scale = applied_torque_scale(joint.cv, out.accepted_effects);
   at = 0;
   for (std::size_t k = 0; k < out.accepted_effects.size(); ++k) {
@@ -1266,8 +1271,8 @@ FittedColumns fitted_columns(const std::vector<Effect>& effects, const Eigen::Ve
 }
 
 CrossValidation fit_together(const std::vector<Effect>& effects, const Eigen::VectorXd& residual,
-                             const Eigen::VectorXd& weight, const Eigen::VectorXd& away, Eigen::Index n,
-                             const Eigen::VectorXd* rows, bool unbiased) {
+                             const Eigen::VectorXd& weight, const Folds& folds, const Eigen::VectorXd& away,
+                             Eigen::Index n, const Eigen::VectorXd* rows, bool unbiased) {
   auto [all, fitted] = fitted_columns(effects, away);
   if (rows != nullptr) fitted.array().colwise() *= rows->array();
   Eigen::MatrixXd fitted_on = all.cwiseProduct(fitted);
@@ -1283,7 +1288,7 @@ CrossValidation fit_together(const std::vector<Effect>& effects, const Eigen::Ve
   // Nor do the rows where a contact acts: a hook held on a table is at rest, and without its rows
   // the contact's fit was left to the rows where it barely acts (seed 41 case 33: a push of -4.9 N
   // +- 1e12).
-  CrossValidation first = cross_validate(residual, all, n, weight, &fitted_on);
+  CrossValidation first = cross_validate(residual, all, n, weight, folds, &fitted_on);
   Eigen::VectorXd kept = rows_without_static_friction(first.heldout, away, n);
   for (const Effect& e : effects) {
     if (e.family == "contact") keep_rows_where_acting(e.columns, n, kept);
@@ -1294,7 +1299,7 @@ CrossValidation fit_together(const std::vector<Effect>& effects, const Eigen::Ve
   }
   const NoiseDraws noise = unbiased ? torque_noise_of(effects, fitted) : NoiseDraws{};
   if (kept.minCoeff() == 1 && noise.at.empty()) return first;
-  return cross_validate(residual, all, n, weight, &fitted_on, &noise);
+  return cross_validate(residual, all, n, weight, folds, &fitted_on, &noise);
 }
 
 // Whether a per-joint effect implausible on some joints is judged on the others. Not a spring or
@@ -1309,7 +1314,7 @@ bool is_narrowed_when_implausible(const Effect& e) { return e.family != "joint_e
 Candidate judged(const Effect& e, const StepState& s, std::deque<Effect>& narrowed_effects) {
   const Eigen::Index n = s.before.size();
   const Eigen::Index offset = s.accepted.cols();
-  Candidate c = evaluate_point(e, s.accepted, s.r0, s.baseline, s.weight, s.away, n);
+  Candidate c = evaluate_point(e, s.accepted, s.r0, s.baseline, s.weight, s.folds, s.away, n);
   RankedEffect described = describe(c, s.before, offset, s.gap.torque_rms);
   c.plausible = plausible(described, s.derivation, s.gap);
   // A per-joint effect whose fit is implausible on some of its joints only is judged on the
@@ -1324,7 +1329,8 @@ Candidate judged(const Effect& e, const StepState& s, std::deque<Effect>& narrow
     const std::vector<int> fine = plausible_joints(e, described, s.derivation, s.gap);
     if (!fine.empty() && fine.size() < described.joints.size()) {
       narrowed_effects.push_back(narrowed(e, fine));
-      Candidate mine = evaluate_point(narrowed_effects.back(), s.accepted, s.r0, s.baseline, s.weight, s.away, n);
+      Candidate mine =
+          evaluate_point(narrowed_effects.back(), s.accepted, s.r0, s.baseline, s.weight, s.folds, s.away, n);
       RankedEffect mine_described = describe(mine, s.before, offset, s.gap.torque_rms);
       mine.plausible = plausible(mine_described, s.derivation, s.gap);
       if (mine.plausible) {
@@ -1420,6 +1426,8 @@ Diagnosis diagnose(const Dataset& d, const pipeline::Derivation& derivation) {
   out.gap = locate_gap(d, r0, derivation);
   const Eigen::VectorXd weight = torque_weights(out.gap.torque_rms);
   out.weight = weight;
+  out.folds = folds_sharing_bursts(r0, weight, n, d.step);
+  const Folds& folds = out.folds;
   std::deque<Effect> effects;  // stable addresses: candidates point at their effect; a search adds to it
   for (Effect& e : candidate_effects(d, derivation)) effects.push_back(std::move(e));
   const ContactRows contacts(d, derivation);  // the contact's grid here, its search at the first step
@@ -1441,7 +1449,7 @@ Diagnosis diagnose(const Dataset& d, const pipeline::Derivation& derivation) {
   std::vector<std::vector<StepAlternative>> step_alternatives;  // each step's per-joint "or" effects
   for (int step = 0; step < kMaxEffects; ++step) {
     const Eigen::VectorXd before = joint_rms(baseline, n);
-    const StepState step_state{accepted, r0, baseline, weight, away, before, out.gap, derivation};
+    const StepState step_state{accepted, r0, baseline, weight, folds, away, before, out.gap, derivation};
     std::map<std::string, Candidate> best =
         best_candidates(contacts, step_state, step == 0, taken, fitted, effects, narrowed_effects);
     if (best.empty()) break;
@@ -1467,7 +1475,7 @@ Diagnosis diagnose(const Dataset& d, const pipeline::Derivation& derivation) {
       std::vector<int> kept;
       for (const int joint : r.joints) {
         const Effect mine_effect = narrowed(*chosen.effect, {joint - 1});
-        const Candidate mine = evaluate(mine_effect, accepted, r0, baseline, weight, n, &out.scored);
+        const Candidate mine = evaluate(mine_effect, accepted, r0, baseline, weight, folds, n, &out.scored);
         bool beaten = false;
         for (const Effect& e : effects) {
           // An effect whose fit over the arm is implausible never takes its turn (a joint left for
@@ -1481,7 +1489,7 @@ Diagnosis diagnose(const Dataset& d, const pipeline::Derivation& derivation) {
           }
           const Effect theirs = without_fitted(narrowed(e, {joint - 1}), fitted);
           if (theirs.columns.cols() == 0) continue;
-          const Candidate other = evaluate_point(theirs, accepted, r0, baseline, weight, away, n, &out.scored);
+          const Candidate other = evaluate_point(theirs, accepted, r0, baseline, weight, folds, away, n, &out.scored);
           const bool better = better_by_the_margin(other, mine);
           const bool simpler_and_as_good = theirs.columns.cols() < mine_effect.columns.cols() &&
                                            !clearly_more(mine, other) && !better_by_the_margin(mine, other);
@@ -1518,8 +1526,8 @@ Diagnosis diagnose(const Dataset& d, const pipeline::Derivation& derivation) {
       top = *first;
       const Candidate* pick = simplest_equal(top, order, usable, before, accepted.cols(), out.gap.torque_rms);
       const Candidate* larger = pick;
-      pick = first_of_a_smaller_pair(pick, order, best, usable, can_lead_a_pair, accepted, r0, baseline, weight, n,
-                                     out.scored);
+      pick = first_of_a_smaller_pair(pick, order, best, usable, can_lead_a_pair, accepted, r0, baseline, weight, folds,
+                                     n, out.scored);
       if (pick != larger) led_a_pair.push_back(pick);
       // The first of a smaller pair that stands in for a large set leads even where another
       // candidate alone explains more than it alone: the pair explains as much as the set (seed 37
@@ -1533,7 +1541,8 @@ Diagnosis diagnose(const Dataset& d, const pipeline::Derivation& derivation) {
           r.joints.clear();
         } else {
           narrowed_candidates.push_back(narrowed_at_best_point(*pick->effect, kept, effects, fitted, narrowed_effects,
-                                                               accepted, r0, baseline, weight, away, n, out.scored));
+                                                               accepted, r0, baseline, weight, folds, away, n,
+                                                               out.scored));
           r = describe(narrowed_candidates.back(), before, accepted.cols(), out.gap.torque_rms);
           rejected.push_back(pick);  // the un-narrowed one is not an alternative of its narrowed self
           // Narrowed, it may explain less than the next candidate of another kind, which then
@@ -1560,7 +1569,7 @@ Diagnosis diagnose(const Dataset& d, const pipeline::Derivation& derivation) {
             if (their_joints.empty()) return lost_to_simpler && clearly_above(c, mine);
             narrowed_effects.push_back(narrowed(*c.effect, their_joints));
             const Candidate theirs_alone =
-                evaluate(narrowed_effects.back(), accepted, r0, baseline, weight, n, &out.scored);
+                evaluate(narrowed_effects.back(), accepted, r0, baseline, weight, folds, n, &out.scored);
             // On other joints, each of the two is found at its turn, and the order of the steps is
             // the order of what each explains on its own joints: more by 1 % leads (a viscous
             // friction of the Kraft's joint 1, which moves in one fold of a tele-operation log,

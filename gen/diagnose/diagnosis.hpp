@@ -57,6 +57,7 @@ struct Diagnosis {
   // accepted (per-joint effects narrowed to their joints), in order, and the per-joint weights.
   std::vector<Effect> accepted_effects;
   Eigen::VectorXd weight;
+  Folds folds;           // the cross-validation's blocks (folds_sharing_bursts of the residual)
   Eigen::VectorXd away;  // away_from_zero_velocity of the data: where friction columns are fitted
   // 1 on the stacked rows the selection scores its candidates on: all but the holds (in_long_rests)
   // of joints where a friction is evident and its static part holds at rest (see diagnose).
@@ -73,7 +74,8 @@ struct FittedColumns {
 };
 FittedColumns fitted_columns(const std::vector<Effect>& effects, const Eigen::VectorXd& away);
 
-/// Effects fitted together on the residual (blocked cross-validation with the per-joint weights):
+/// Effects fitted together on the residual (blocked cross-validation with the per-joint weights,
+/// over the blocks `folds`):
 /// friction columns are fitted where the velocity is away from zero (`away`) and predict on every
 /// row. Near zero a log's friction turns over in its own way, which would bend a Coulomb term
 /// fitted there (a rigid plant's friction regularised over 10 mrad/s read 11 % low). A joint's rows
@@ -83,7 +85,7 @@ FittedColumns fitted_columns(const std::vector<Effect>& effects, const Eigen::Ve
 /// error) are read free of the logged torque's noise where columns are made from it
 /// (Effect::torque_noise); the held-out residual is then the corrected fits', a worse predictor.
 CrossValidation fit_together(const std::vector<Effect>& effects, const Eigen::VectorXd& residual,
-                             const Eigen::VectorXd& weight, const Eigen::VectorXd& away, Eigen::Index n,
-                             const Eigen::VectorXd* rows = nullptr, bool unbiased = false);
+                             const Eigen::VectorXd& weight, const Folds& folds, const Eigen::VectorXd& away,
+                             Eigen::Index n, const Eigen::VectorXd* rows = nullptr, bool unbiased = false);
 
 }  // namespace dyncc::diagnose

@@ -60,6 +60,15 @@ nlohmann::json diagnosis_json(const Dataset& data, const Diagnosis& d) {
                        {"end", w.end},
                        {"rms_ratio", w.rms_ratio}});
   }
+  nlohmann::json blocks = nlohmann::json::array();
+  for (int f = 0; f < kFolds; ++f) {
+    const Eigen::Index first = d.folds.begin_of(f), last = d.folds.end_of(f) - 1;
+    if (last < first) continue;
+    blocks.push_back({{"log", data.logs[static_cast<std::size_t>(data.analysis_log[static_cast<std::size_t>(first)])]},
+                      {"start", data.analysis_t[first]},
+                      {"end", data.analysis_t[last]},
+                      {"rows", last - first + 1}});
+  }
   nlohmann::json regimes = nlohmann::json::object();
   for (const Regime& r : d.gap.regimes)
     regimes[r.name] = {{"rms", vector_json(r.rms)}, {"share", vector_json(r.share)}};
@@ -84,6 +93,7 @@ nlohmann::json diagnosis_json(const Dataset& data, const Diagnosis& d) {
             {"regimes", regimes}}},
           {"audit", audit},
           {"filter", {{"cutoff_hz", data.cutoff}, {"row_spacing_s", data.step}, {"rows", data.rows()}}},
+          {"heldout_blocks", {{"even", d.folds == Folds::even(data.rows())}, {"blocks", blocks}}},
           {"torque", data.held_torque ? "held command" : "at its time stamp"}};
 }
 
@@ -112,6 +122,14 @@ std::string diagnosis_text(const Dataset& data, const Diagnosis& d) {
   for (const Window& w : d.gap.windows) {
     out += fmt::format("  window {:.1f}-{:.1f} s of log {}: {:.1f}x the usual residual\n", w.start, w.end, w.log + 1,
                        w.rms_ratio);
+  }
+  if (d.folds != Folds::even(data.rows())) {
+    out += "  held out in blocks moved so that no one block holds the residual's bursts:";
+    for (int f = 0; f < kFolds; ++f) {
+      const Eigen::Index first = d.folds.begin_of(f), last = d.folds.end_of(f) - 1;
+      if (last >= first) out += fmt::format(" {:.1f}-{:.1f} s", data.analysis_t[first], data.analysis_t[last]);
+    }
+    out += "\n";
   }
   out +=
       fmt::format("\nwithin the model (re-identified base parameters): shrink {:.1f} %\n", 100 * d.within_model.shrink);

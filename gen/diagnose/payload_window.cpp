@@ -51,9 +51,12 @@ class WindowFits {
     const Eigen::MatrixXd window_normal = normal(a, b);
     const Eigen::VectorXd window_right = right(a, b);
     double sum = 0;
-    for (int f = 0; f < kFolds; ++f) {  // the cross-validation's blocks, over all analysis rows
-      const Eigen::Index ha = std::max(a, fold_begin(rows_, f));
-      const Eigen::Index hb = std::min(b, fold_begin(rows_, f + 1));
+    // Even blocks over all analysis rows: the search runs while the candidates are made, before
+    // the diagnosis places its blocks (fold_plan.hpp), and asks only which window a load explains.
+    const Folds blocks = Folds::even(rows_);
+    for (int f = 0; f < kFolds; ++f) {
+      const Eigen::Index ha = std::max(a, blocks.begin_of(f));
+      const Eigen::Index hb = std::min(b, blocks.end_of(f));
       if (hb <= ha) continue;
       const Eigen::MatrixXd held_normal = normal(ha, hb);
       const Eigen::VectorXd held_right = right(ha, hb);

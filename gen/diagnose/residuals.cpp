@@ -11,8 +11,8 @@ SelectedResiduals selected_residuals(const Dataset& data, const Diagnosis& diagn
   if (diagnosis.selected.empty()) return out;
 
   // The effects exactly as the selection accepted them, with its weights and fitting rows.
-  const CrossValidation cv =
-      fit_together(diagnosis.accepted_effects, data.residual, diagnosis.weight, diagnosis.away, data.n);
+  const CrossValidation cv = fit_together(diagnosis.accepted_effects, data.residual, diagnosis.weight, diagnosis.folds,
+                                          diagnosis.away, data.n);
   out.heldout = cv.heldout;
 
   Eigen::Index at = 0;
