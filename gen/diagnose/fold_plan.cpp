@@ -10,6 +10,13 @@ namespace dyncc::diagnose {
 namespace {
 
 constexpr int kGridSteps = 10;  // an edge moves on a grid of 1/20 of an even block, up to half of one
+constexpr Eigen::Index kGridDivisions = Eigen::Index{2} * kGridSteps;
+
+// The shortest block allowed: kShortestBlock of an even one.
+Eigen::Index shortest_block(Eigen::Index samples) {
+  const Eigen::Index block = samples / kFolds;
+  return static_cast<Eigen::Index>(kShortestBlock * static_cast<double>(block));
+}
 
 // The rows' bursts: running sums of their energy (so a block's is two reads) and which rows lie
 // within kBurstMargin of one (where an edge would cut through a burst).
@@ -70,7 +77,7 @@ Bursts find_bursts(const Eigen::VectorXd& residual, const Eigen::VectorXd& weigh
 // The edges on the grid (every combination) that share the bursts best without cutting through
 // one; of equal shares, the one that moves the edges least.
 Folds between_bursts(const Bursts& bursts, const Folds& even, Eigen::Index samples) {
-  const Eigen::Index block = samples / kFolds, shortest = static_cast<Eigen::Index>(kShortestBlock * block);
+  const Eigen::Index block = samples / kFolds, shortest = shortest_block(samples);
   Folds best = even;
   double best_share = bursts.largest_share(even), best_moved = 0;
   std::array<int, kFolds - 1> offset{};
@@ -81,7 +88,7 @@ Folds between_bursts(const Bursts& bursts, const Folds& even, Eigen::Index sampl
     bool valid = true;
     for (int f = 1; f < kFolds && valid; ++f) {
       const int o = offset[static_cast<std::size_t>(f - 1)];
-      folds.begin[static_cast<std::size_t>(f)] = even.begin_of(f) + o * block / (2 * kGridSteps);
+      folds.begin[static_cast<std::size_t>(f)] = even.begin_of(f) + o * block / kGridDivisions;
       moved += std::abs(o);
       valid = folds.begin_of(f) - folds.begin_of(f - 1) >= shortest && (o == 0 || !bursts.cuts(folds.begin_of(f)));
     }
@@ -104,7 +111,7 @@ Folds between_bursts(const Bursts& bursts, const Folds& even, Eigen::Index sampl
 // From `start`, twice: the single edge move (to any row) that lowers the largest share the most;
 // of equal shares, the shortest move.
 Folds through_a_burst(const Bursts& bursts, const Folds& start, Eigen::Index samples) {
-  const Eigen::Index shortest = static_cast<Eigen::Index>(kShortestBlock * static_cast<double>(samples / kFolds));
+  const Eigen::Index shortest = shortest_block(samples);
   Folds best = start;
   double best_share = bursts.largest_share(start);
   for (int round = 0; round < 2; ++round) {
@@ -134,7 +141,7 @@ Folds folds_sharing_bursts(const Eigen::VectorXd& residual, const Eigen::VectorX
                            double step) {
   const Eigen::Index samples = residual.size() / n;
   const Folds even = Folds::even(samples);
-  if (samples < 2 * kFolds) return even;
+  if (samples < Eigen::Index{2} * kFolds) return even;
   const Bursts bursts = find_bursts(residual, weight, n, step);
   if (bursts.energy <= 0 || bursts.energy < kBurstsOfResidual * bursts.residual_energy ||
       bursts.largest_share(even) <= kBurstShareLimit) {
