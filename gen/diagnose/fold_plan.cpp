@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <cstdlib>
+#include <utility>
 #include <vector>
 
 namespace dyncc::diagnose {
@@ -52,23 +53,33 @@ Bursts find_bursts(const Eigen::VectorXd& residual, const Eigen::VectorXd& weigh
   b.near.assign(static_cast<std::size_t>(samples), false);
   b.residual_energy = energy.sum();
   const auto margin = static_cast<Eigen::Index>(kBurstMargin / step);
-  // Bursts closer than the margin are one (a touch's rows dip below the threshold and rise again);
-  // then each is widened by the margin.
-  std::vector<bool> inside(static_cast<std::size_t>(samples), false);
-  Eigen::Index last = -1;
+  const auto longest = static_cast<Eigen::Index>(kLongestBurst / step);
+  // Rows over the threshold closer than the margin are one burst (a touch's rows dip below the
+  // threshold and rise again). A burst longer than kLongestBurst is a stretch, not a touch: not
+  // counted.
+  std::vector<std::pair<Eigen::Index, Eigen::Index>> bursts;  // [first, last] rows
   for (Eigen::Index s = 0; s < samples; ++s) {
-    const bool burst = energy[s] > threshold;
-    b.running[static_cast<std::size_t>(s) + 1] = b.running[static_cast<std::size_t>(s)] + (burst ? energy[s] : 0.0);
-    if (!burst) continue;
-    const Eigen::Index from = last >= 0 && s - last <= margin ? last : s;
-    for (Eigen::Index o = from; o <= s; ++o) inside[static_cast<std::size_t>(o)] = true;
-    last = s;
+    if (energy[s] <= threshold) continue;
+    if (!bursts.empty() && s - bursts.back().second <= margin) {
+      bursts.back().second = s;
+    } else {
+      bursts.emplace_back(s, s);
+    }
+  }
+  std::vector<double> counted(static_cast<std::size_t>(samples), 0.0);
+  for (const auto& [first, last] : bursts) {
+    if (last - first > longest) continue;
+    for (Eigen::Index s = first; s <= last; ++s) {
+      if (energy[s] > threshold) counted[static_cast<std::size_t>(s)] = energy[s];
+    }
+    // Widened by the margin: an edge there would cut through the burst or its filtered tail.
+    for (Eigen::Index s = std::max<Eigen::Index>(0, first - margin); s <= std::min(samples - 1, last + margin); ++s) {
+      b.near[static_cast<std::size_t>(s)] = true;
+    }
   }
   for (Eigen::Index s = 0; s < samples; ++s) {
-    if (!inside[static_cast<std::size_t>(s)]) continue;
-    for (Eigen::Index o = std::max<Eigen::Index>(0, s - margin); o <= std::min(samples - 1, s + margin); ++o) {
-      b.near[static_cast<std::size_t>(o)] = true;
-    }
+    b.running[static_cast<std::size_t>(s) + 1] =
+        b.running[static_cast<std::size_t>(s)] + counted[static_cast<std::size_t>(s)];
   }
   b.energy = b.running.back();
   return b;

@@ -28,6 +28,10 @@ inline constexpr double kBurstShareLimit = 0.5;
 /// bring the largest block's share to kSingleBurst or below.
 inline constexpr double kSingleBurst = 0.8;
 inline constexpr double kBurstMargin = 1.0;  // s: a touch's filtered, closed-loop tail
+/// Burst rows closer than kBurstMargin are one burst; one longer than this is a stretch (a load
+/// carried for 9 s, a joint moving fast for a while), not a touch, and is not counted: its
+/// effect is not one-off, and the payload's own window search finds where a load was carried.
+inline constexpr double kLongestBurst = 4.0;  // s
 /// No block shorter than this share of an even block.
 inline constexpr double kShortestBlock = 0.5;
 
