@@ -11,9 +11,11 @@ namespace {
 
 constexpr Eigen::Index kGridPoints = 48;  // coarse grid of window edges per log
 constexpr int kRefinePasses = 3;          // edge-by-edge refinement at single rows
-// A load carried for a shorter share of the log could sit inside one held-out fold (a fifth of
-// the log), where nothing trained on the other folds can check it.
-constexpr double kShortestShare = 0.3;
+// A load carried for a shorter share of the log could sit inside one held-out block (a fifth of
+// the log), where nothing trained on the other blocks can check it. (It was 30 %: a load carried
+// for 22 % of a log, blind seed 193 case 32, then had its window stretched to 30 % and its mass
+// read 18.5 % light.)
+constexpr double kShortestShare = 0.2;
 // And a load put down (or picked up) within the last (first) tenth of a log is a load carried
 // throughout as far as the data can tell: the constant payload.
 constexpr double kShortestUnloaded = 0.1;
