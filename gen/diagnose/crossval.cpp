@@ -1,6 +1,7 @@
 #include "diagnose/crossval.hpp"
 
 #include <algorithm>
+#include <cassert>
 #include <cmath>
 #include <vector>
 
@@ -59,6 +60,7 @@ CrossValidation cross_validate(const Eigen::VectorXd& r, const Eigen::MatrixXd& 
                                const Eigen::VectorXd& weight, const Folds& folds, const Eigen::MatrixXd* fitted_on,
                                const NoiseDraws* noise) {
   const Eigen::Index k = E.cols();
+  assert(folds.begin_of(0) == 0 && folds.end_of(kFolds - 1) * joints == r.size());  // the blocks cover the rows
   const Eigen::MatrixXd& F = fitted_on != nullptr ? *fitted_on : E;
   CrossValidation cv;
   cv.heldout = r;

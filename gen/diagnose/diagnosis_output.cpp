@@ -3,8 +3,20 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
+#include <utility>
+#include <vector>
+
 namespace dyncc::diagnose {
 namespace {
+
+// The held-out blocks that hold rows, as [first, last] analysis rows.
+std::vector<std::pair<Eigen::Index, Eigen::Index>> heldout_blocks(const Folds& folds) {
+  std::vector<std::pair<Eigen::Index, Eigen::Index>> out;
+  for (int f = 0; f < kFolds; ++f) {
+    if (folds.end_of(f) > folds.begin_of(f)) out.emplace_back(folds.begin_of(f), folds.end_of(f) - 1);
+  }
+  return out;
+}
 
 nlohmann::json vector_json(const Eigen::VectorXd& v) {
   nlohmann::json out = nlohmann::json::array();
@@ -61,9 +73,7 @@ nlohmann::json diagnosis_json(const Dataset& data, const Diagnosis& d) {
                        {"rms_ratio", w.rms_ratio}});
   }
   nlohmann::json blocks = nlohmann::json::array();
-  for (int f = 0; f < kFolds; ++f) {
-    const Eigen::Index first = d.folds.begin_of(f), last = d.folds.end_of(f) - 1;
-    if (last < first) continue;
+  for (const auto& [first, last] : heldout_blocks(d.folds)) {
     blocks.push_back({{"log", data.logs[static_cast<std::size_t>(data.analysis_log[static_cast<std::size_t>(first)])]},
                       {"start", data.analysis_t[first]},
                       {"end", data.analysis_t[last]},
@@ -125,9 +135,8 @@ std::string diagnosis_text(const Dataset& data, const Diagnosis& d) {
   }
   if (d.folds != Folds::even(data.rows())) {
     out += "  held out in blocks moved so that no one block holds the residual's bursts:";
-    for (int f = 0; f < kFolds; ++f) {
-      const Eigen::Index first = d.folds.begin_of(f), last = d.folds.end_of(f) - 1;
-      if (last >= first) out += fmt::format(" {:.1f}-{:.1f} s", data.analysis_t[first], data.analysis_t[last]);
+    for (const auto& [first, last] : heldout_blocks(d.folds)) {
+      out += fmt::format(" {:.1f}-{:.1f} s", data.analysis_t[first], data.analysis_t[last]);
     }
     out += "\n";
   }
