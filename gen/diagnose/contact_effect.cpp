@@ -6,7 +6,7 @@
 namespace dyncc::diagnose {
 namespace {
 
-constexpr double kContactPoints[] = {-1.0, -0.5, 0.0, 0.5, 1.0, 1.5};  // times the arm's scale
+constexpr double kContactPoints[] = {-1.0, -0.5, 0.0, 0.5, 1.0, 1.5, 2.0, 2.5};  // times the arm's scale
 // Of the point's height over the log. The smallest ones for brief touches: a MuJoCo table 5 mm
 // above the Kraft hook's lowest point is touched in 0.2 % of the rows (seed 107 case 3).
 constexpr double kContactQuantiles[] = {0.003, 0.01, 0.02, 0.05, 0.1, 0.2, 0.3};

@@ -1,6 +1,7 @@
 #include "diagnose/payload_window.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 #include <vector>
 
@@ -142,6 +143,34 @@ std::optional<PayloadWindow> find_payload_window(const Dataset& d, const Eigen::
     begin = end;
   }
   return best;
+}
+
+PayloadWindow edges_out_of_rests(const Dataset& d, PayloadWindow window, const Eigen::VectorXd& arm_rests) {
+  const auto in_log = [&](Eigen::Index r) {
+    return r >= 0 && r < d.rows() && d.analysis_log[static_cast<std::size_t>(r)] == window.log;
+  };
+  Eigen::Index begin = window.first_row, end = window.end_row;
+  while (in_log(begin - 1)) --begin;
+  while (in_log(end)) ++end;
+  const auto shortest = static_cast<Eigen::Index>(kShortestShare * static_cast<double>(end - begin));
+  const auto& t = d.analysis_t;
+  if (std::isfinite(window.start) && arm_rests[window.first_row] > 0) {
+    Eigen::Index a = window.first_row;
+    while (a < window.end_row && arm_rests[a] > 0) ++a;
+    if (window.end_row - a >= shortest) {
+      window.first_row = a;
+      window.start = 0.5 * (t[a - 1] + t[a]);
+    }
+  }
+  if (std::isfinite(window.end) && arm_rests[window.end_row - 1] > 0) {
+    Eigen::Index b = window.end_row;
+    while (b > window.first_row && arm_rests[b - 1] > 0) --b;
+    if (b - window.first_row >= shortest) {
+      window.end_row = b;
+      window.end = 0.5 * (t[b - 1] + t[b]);
+    }
+  }
+  return window;
 }
 
 Eigen::MatrixXd gated(const Dataset& d, const Eigen::MatrixXd& columns, const PayloadWindow& window) {
