@@ -5,11 +5,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <initializer_list>
-#include <limits>
 #include <optional>
 #include <random>
-#include <utility>
 
 #include "diagnose/payload_window.hpp"
 
@@ -72,66 +69,6 @@ TEST(PayloadWindow, ALoadCarriedForAFifthOfTheLogIsFoundToAFewRows) {
   ASSERT_TRUE(window.has_value());
   EXPECT_NEAR(window->start, 23.0, 0.05);
   EXPECT_NEAR(window->end, 36.2, 0.05);
-}
-
-// A window whose edges the search placed inside rests of the arm (the load's torque there is held
-// or not by static friction, so the data cannot place them) has its pick-up moved to the rest's
-// end and its put-down to the rest's start: a load weighs on the arm only between the lift and the
-// set-down. Edges in motion stay where they are.
-diagnose::PayloadWindow window_over(const diagnose::Dataset& d, double start, double end) {
-  diagnose::PayloadWindow w;
-  w.first_row = static_cast<Eigen::Index>(std::lround(start / kStep));
-  w.end_row = static_cast<Eigen::Index>(std::lround(end / kStep));
-  w.start = d.analysis_t[w.first_row] - 0.5 * kStep;
-  w.end = d.analysis_t[w.end_row] - 0.5 * kStep;
-  return w;
-}
-
-Eigen::VectorXd rests_between(const diagnose::Dataset& d, std::initializer_list<std::pair<double, double>> rests) {
-  Eigen::VectorXd out = Eigen::VectorXd::Zero(d.rows());
-  for (Eigen::Index a = 0; a < d.rows(); ++a) {
-    for (const auto& [from, to] : rests) out[a] = d.analysis_t[a] >= from && d.analysis_t[a] < to ? 1.0 : out[a];
-  }
-  return out;
-}
-
-TEST(PayloadWindow, EdgesInsideRestsMoveToWhereTheArmLiftsAndSetsDown) {
-  const diagnose::Dataset d = one_log();
-  const auto moved =
-      diagnose::edges_out_of_rests(d, window_over(d, 12.0, 59.3), rests_between(d, {{7.5, 17.3}, {59.0, 60.0}}));
-  EXPECT_NEAR(moved.start, 17.3, kStep);
-  EXPECT_NEAR(moved.end, 59.0, kStep);
-  EXPECT_EQ(moved.first_row, 1730);
-  EXPECT_EQ(moved.end_row, 5900);
-}
-
-TEST(PayloadWindow, EdgesInMotionOrAtTheLogsEndsStay) {
-  const diagnose::Dataset d = one_log();
-  const auto window = window_over(d, 20.0, 40.0);
-  const auto same = diagnose::edges_out_of_rests(d, window, rests_between(d, {{7.5, 17.3}, {45.0, 50.0}}));
-  EXPECT_EQ(same.first_row, window.first_row);
-  EXPECT_EQ(same.end_row, window.end_row);
-  // Carried from the log's start: no pick-up to move, though the log starts at rest.
-  diagnose::PayloadWindow from_start = window;
-  from_start.first_row = 0;
-  from_start.start = -std::numeric_limits<double>::infinity();
-  const auto kept = diagnose::edges_out_of_rests(d, from_start, rests_between(d, {{0.0, 5.0}}));
-  EXPECT_EQ(kept.first_row, 0);
-  EXPECT_TRUE(std::isinf(kept.start));
-  // A pick-up where a rest begins is where the arm stopped with the load held up (seed 191 case
-  // 54: moved to the rest's end, 3.4 s of carrying were lost and the load was no longer found).
-  const auto at_rest_start = diagnose::edges_out_of_rests(d, window_over(d, 19.8, 50.0), rests_between(d, {{19.7, 23.2}}));
-  EXPECT_NEAR(at_rest_start.start, 19.8, kStep);
-}
-
-// A rest so long that moving the edge out of it would leave less of a window than the search
-// allows (a fifth of the log) keeps the edge: the window is then what the data said.
-TEST(PayloadWindow, AnEdgeIsNotMovedWhereTooLittleWindowWouldBeLeft) {
-  const diagnose::Dataset d = one_log();
-  const auto window = window_over(d, 10.0, 30.0);
-  const auto kept = diagnose::edges_out_of_rests(d, window, rests_between(d, {{5.0, 25.0}}));
-  EXPECT_EQ(kept.first_row, window.first_row);
-  EXPECT_EQ(kept.end_row, window.end_row);
 }
 
 }  // namespace

@@ -25,11 +25,4 @@ Eigen::VectorXd in_long_rests(const Dataset& d, const Eigen::VectorXd& away) {
   return out;
 }
 
-Eigen::VectorXd arm_rests(const Dataset& d) {
-  const Eigen::VectorXd rests = in_long_rests(d, away_from_zero_velocity(d));
-  Eigen::VectorXd out(d.rows());
-  for (Eigen::Index r = 0; r < d.rows(); ++r) out[r] = rests.segment(r * d.n, d.n).minCoeff();
-  return out;
-}
-
 }  // namespace dyncc::diagnose

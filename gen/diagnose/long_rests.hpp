@@ -17,7 +17,4 @@ namespace dyncc::diagnose {
 inline constexpr double kLongRest = 1.0;  // s
 Eigen::VectorXd in_long_rests(const Dataset& d, const Eigen::VectorXd& away);
 
-/// Per analysis row (A): 1 where every joint is in a long rest (the whole arm holds still).
-Eigen::VectorXd arm_rests(const Dataset& d);
-
 }  // namespace dyncc::diagnose

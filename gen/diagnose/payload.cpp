@@ -3,7 +3,6 @@
 #include <array>
 #include <cmath>
 
-#include "diagnose/long_rests.hpp"
 #include "diagnose/payload_window.hpp"
 
 namespace dyncc::diagnose {
@@ -118,14 +117,13 @@ void add_payload_effects(const Dataset& d, const pipeline::Derivation& derivatio
       resolved_axes(point_mass(conditioned, Eigen::Vector3d::Zero()), stacked_weights(weight, conditioned.rows()));
   out.push_back(payload_effect(conditioned, load_point(d, conditioned, weight, resolved), resolved));
 
-  const auto found = find_payload_window(d, out.back().columns, d.residual, weight);
-  if (!found) return;
-  const auto window = edges_out_of_rests(d, *found, arm_rests(d));
-  const Eigen::MatrixXd carried = d.condition(gated(d, all, window));
+  const auto window = find_payload_window(d, out.back().columns, d.residual, weight);
+  if (!window) return;
+  const Eigen::MatrixXd carried = d.condition(gated(d, all, *window));
   Effect e = payload_effect(carried, load_point(d, carried, weight, resolved), resolved);
-  if (std::isfinite(window.start)) e.shape.push_back({"picked_up_at", window.start, d.step});
-  if (std::isfinite(window.end)) e.shape.push_back({"put_down_at", window.end, d.step});
-  if (d.logs.size() > 1) e.shape.push_back({"log", static_cast<double>(window.log + 1), 0.0});
+  if (std::isfinite(window->start)) e.shape.push_back({"picked_up_at", window->start, d.step});
+  if (std::isfinite(window->end)) e.shape.push_back({"put_down_at", window->end, d.step});
+  if (d.logs.size() > 1) e.shape.push_back({"log", static_cast<double>(window->log + 1), 0.0});
   out.push_back(std::move(e));
 }
 

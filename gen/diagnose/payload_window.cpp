@@ -1,7 +1,6 @@
 #include "diagnose/payload_window.hpp"
 
 #include <algorithm>
-#include <cmath>
 #include <limits>
 #include <vector>
 
@@ -20,12 +19,6 @@ constexpr double kShortestShare = 0.2;
 // And a load put down (or picked up) within the last (first) tenth of a log is a load carried
 // throughout as far as the data can tell: the constant payload.
 constexpr double kShortestUnloaded = 0.1;
-// A pick-up edge this long into a rest (a put-down edge this long before its end) lies inside it.
-// Nearer the rest's start, the edge is where the arm came to rest carrying the load: on a
-// rigid-plant tele-operation log (seed 191 case 54) the search put the pick-up 0.1 s before the arm
-// stopped with the load held up, and moved to that rest's end it dropped 3.4 s of carrying and the
-// load was no longer found.
-constexpr double kInsideRest = 0.5;  // s
 
 // Running sums over the analysis rows of one log: the normal equations of any stretch of rows are
 // two differences.
@@ -149,41 +142,6 @@ std::optional<PayloadWindow> find_payload_window(const Dataset& d, const Eigen::
     begin = end;
   }
   return best;
-}
-
-PayloadWindow edges_out_of_rests(const Dataset& d, PayloadWindow window, const Eigen::VectorXd& arm_rests) {
-  const auto in_log = [&](Eigen::Index r) {
-    return r >= 0 && r < d.rows() && d.analysis_log[static_cast<std::size_t>(r)] == window.log;
-  };
-  const auto resting = [&](Eigen::Index r) { return in_log(r) && arm_rests[r] > 0; };
-  // How long the arm has rested at row r, counting from r towards `direction` (-1, +1).
-  const auto rested = [&](Eigen::Index r, Eigen::Index direction) {
-    Eigen::Index k = r;
-    while (resting(k + direction)) k += direction;
-    return resting(r) ? std::abs(d.analysis_t[k] - d.analysis_t[r]) : -1.0;
-  };
-  Eigen::Index begin = window.first_row, end = window.end_row;
-  while (in_log(begin - 1)) --begin;
-  while (in_log(end)) ++end;
-  const auto shortest = static_cast<Eigen::Index>(kShortestShare * static_cast<double>(end - begin));
-  const auto& t = d.analysis_t;
-  if (std::isfinite(window.start) && rested(window.first_row, -1) >= kInsideRest) {
-    Eigen::Index a = window.first_row;
-    while (a < window.end_row && resting(a)) ++a;
-    if (window.end_row - a >= shortest) {
-      window.first_row = a;
-      window.start = 0.5 * (t[a - 1] + t[a]);
-    }
-  }
-  if (std::isfinite(window.end) && rested(window.end_row - 1, +1) >= kInsideRest) {
-    Eigen::Index b = window.end_row;
-    while (b > window.first_row && resting(b - 1)) --b;
-    if (b - window.first_row >= shortest) {
-      window.end_row = b;
-      window.end = 0.5 * (t[b - 1] + t[b]);
-    }
-  }
-  return window;
 }
 
 Eigen::MatrixXd gated(const Dataset& d, const Eigen::MatrixXd& columns, const PayloadWindow& window) {

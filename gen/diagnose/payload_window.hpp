@@ -27,16 +27,6 @@ struct PayloadWindow {
 std::optional<PayloadWindow> find_payload_window(const Dataset& d, const Eigen::MatrixXd& columns,
                                                  const Eigen::VectorXd& residual, const Eigen::VectorXd& weight);
 
-/// The window with an edge that falls inside a rest of the whole arm (half a second or more after the
-/// rest's start for a pick-up, before its end for a put-down) moved out of it: a pick-up to the
-/// rest's end, a put-down to its start. A load is picked up and put down at rest, and it
-/// weighs on the arm only once the arm lifts it (until it sets it down); while the arm rests, a
-/// static friction can hold the load's torque or not, so the held-out search cannot place the
-/// edge within the rest and takes in rows that make the load light. `arm_rests` is 1 on the
-/// analysis rows (A) where every joint is in a long rest (long_rests.hpp). An edge is not moved
-/// where that would leave the window shorter than the search allows.
-PayloadWindow edges_out_of_rests(const Dataset& d, PayloadWindow window, const Eigen::VectorXd& arm_rests);
-
 /// The payload's columns (evaluation rows, S*n x k) kept only while the load is carried.
 Eigen::MatrixXd gated(const Dataset& d, const Eigen::MatrixXd& columns, const PayloadWindow& window);
 
