@@ -373,7 +373,9 @@ TEST(DiagnoseCommand, ANarrowedLeaderExplainingLessThanTheNextGivesWay) {
 // touched by the hook, the rigid plant's Fourier log at 200 Hz. Joint 2 barely moves in two of the
 // five folds, so the Stribeck friction's interval where it moves is wide (its shrink there 92, 85,
 // 26, 91 and 93 % fold by fold), and by that interval a Coulomb friction (54, 28, 19, 56, 51 %)
-// was as good and, simpler, was named. Clearly worse in every fold, it is not as good.
+// was as good and, simpler, was named. Clearly worse in every fold, it is not as good. (Since the
+// twenty-first session's contact grid reaches the hook, the table is found too, and named first:
+// the injected contact is the larger effect.)
 TEST(DiagnoseCommand, CoulombFrictionClearlyWorseWhereTheJointMovesIsNotAsGoodAsStribeck) {
   const double excess = 0.056539506133563615, depth = 0.004145151081098792;
   const std::string effects =
@@ -381,7 +383,15 @@ TEST(DiagnoseCommand, CoulombFrictionClearlyWorseWhereTheJointMovesIsNotAsGoodAs
                        joint_effect("stribeck_friction", 2, "fs", excess)});
   const nlohmann::json d = diagnose_excited("fourier_stribeck_contact", effects,
                                             "--plant dyncc --trajectory fourier --rate 200 --seed 83024");
-  expect_stribeck(d, 2, excess);
+  EXPECT_EQ(d["verdict"]["effect"], "contact") << d["verdict"].dump();
+  bool stribeck_of_joint_2 = false;
+  for (const auto& r : d["selected"]) {
+    if (r["effect"] == "stribeck_friction" && r["joints"] == nlohmann::json::array({2})) stribeck_of_joint_2 = true;
+  }
+  EXPECT_TRUE(stribeck_of_joint_2) << d["selected"].dump();
+  std::map<std::string, double> fitted = fitted_of(d);
+  ASSERT_TRUE(fitted.count("fs2")) << d["selected"].dump();
+  EXPECT_NEAR(fitted["fs2"], excess, 0.1 * excess);
 }
 
 // Blind bench seed 181, case 48: the hook touches a table 9.5 mm above the reference's lowest hook

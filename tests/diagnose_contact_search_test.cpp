@@ -62,9 +62,9 @@ TEST(ContactRows, GatePositionsKeepATouchShorterThanTheFilterPeriod) {
   EXPECT_LT(seen_depth(d, d.q), 0.25 * kDipDepth);
 }
 
-// A judge whose held-out shrink peaks at a point beyond the grid's farthest (x = 2.2 scales along
-// the link, z = -0.3 scales, the surface at the 0.4 % quantile), and calls a fit plausible only
-// short of 2 scales along the link. The search from the grid's best point ends at the peak (to
+// A judge whose held-out shrink peaks at a point beyond the grid's farthest (x = 3.2 scales along
+// the link, the grid ending at 2.5; z = -0.3 scales, the surface at the 0.4 % quantile), and calls
+// a fit plausible only short of 3 scales along the link. The search from the grid's best point ends at the peak (to
 // its finest step) and also returns the best plausible point it judged.
 TEST(ContactSearch, ClimbsBeyondTheGridAndKeepsTheBestPlausiblePoint) {
   diagnose::SyntheticOptions options;
@@ -74,11 +74,11 @@ TEST(ContactSearch, ClimbsBeyondTheGridAndKeepsTheBestPlausiblePoint) {
   const diagnose::Dataset d = diagnose::build_dataset({diagnose::read_joint_log(path.string(), 3)}, kraft());
   const diagnose::ContactRows rows(d, kraft());
   ASSERT_TRUE(rows.valid());
-  const double scale = rows.scale(), x0 = 2.2 * scale, z0 = -0.3 * scale, q0 = 0.004;
+  const double scale = rows.scale(), x0 = 3.2 * scale, z0 = -0.3 * scale, q0 = 0.004;
   const diagnose::ContactJudge judge = [&](const diagnose::Effect& e) {
     const diagnose::ContactPoint p = diagnose::ContactPoint::of(e);
     const double dx = (p.point.x() - x0) / scale, dz = (p.point.z() - z0) / scale, dq = std::log2(p.quantile / q0);
-    return diagnose::ContactFit{p.point.x() < 2.0 * scale, 0.6 - dx * dx - dz * dz - 0.02 * dq * dq};
+    return diagnose::ContactFit{p.point.x() < 3.0 * scale, 0.6 - dx * dx - dz * dz - 0.02 * dq * dq};
   };
   diagnose::ContactPoint start;
   diagnose::ContactFit start_fit;
@@ -89,7 +89,7 @@ TEST(ContactSearch, ClimbsBeyondTheGridAndKeepsTheBestPlausiblePoint) {
       start_fit = f;
     }
   }
-  EXPECT_LE(start.point.x(), 1.5 * scale + 1e-12);  // the grid stops short of the peak
+  EXPECT_LE(start.point.x(), 2.5 * scale + 1e-12);  // the grid stops short of the peak
   const std::vector<diagnose::ContactPoint> found = diagnose::search_contact(rows, start, start_fit, judge);
   ASSERT_EQ(found.size(), 2U);
   EXPECT_NEAR(found[0].point.x(), x0, 0.05 * scale);
