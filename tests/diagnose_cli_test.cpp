@@ -428,6 +428,26 @@ TEST(DiagnoseCommand, OfTwoArmEffectsThatExplainTheSameOneStays) {
   EXPECT_NEAR(fitted["delay"], delay, 1.0 / 500);
 }
 
+// Blind bench seed 211, case 54: a Coulomb friction of joint 1 (5 % of the torque) beside a 1.03
+// gain of that joint, the rigid plant's tele-operation log at 500 Hz. Alone in the selection, a
+// Stribeck friction tied with it and was named first, its excess fs1 0.0049 +- 0.013: within its
+// stated error of zero, and the rule that reads such a friction as its Coulomb friction ran only
+// beside another effect, against the folds' error alone. It is the Coulomb friction.
+TEST(DiagnoseCommand, AStribeckExcessWithinItsStatedErrorOfZeroIsACoulombFriction) {
+  const double fc = 0.04989331040305657;
+  const nlohmann::json d =
+      diagnose_excited("teleop_coulomb_gain",
+                       effects_file_of({joint_effect("coulomb_friction", 1, "fc", fc),
+                                        joint_effect("torque_gain", 1, "gain", 1.0275165137458597)}),
+                       "--plant dyncc --trajectory teleop --rate 500 --seed 211054");
+  EXPECT_EQ(d["verdict"]["effect"].get<std::string>().substr(0, 16), "coulomb_friction") << d["verdict"].dump();
+  EXPECT_EQ(d["verdict"]["joints"], nlohmann::json::array({1})) << d["verdict"].dump();
+  std::map<std::string, double> fitted = fitted_of(d);
+  EXPECT_FALSE(fitted.count("fs1")) << d["selected"].dump();
+  ASSERT_TRUE(fitted.count("fc1")) << d["selected"].dump();
+  EXPECT_NEAR(fitted["fc1"], fc, 0.1 * fc);
+}
+
 // A table `depth` m above the lowest point of the hook in a run of dyncc excite, diagnosed; the
 // verdict must be the contact.
 nlohmann::json diagnosed_contact(const std::string& name, double depth, const std::string& run) {

@@ -666,16 +666,22 @@ Candidate narrowed_at_best_point(const Effect& chosen, const std::vector<int>& k
 }
 
 // Whether the joint fit `cv` of `effects` reads the static excess of effects[k] (a Stribeck
-// friction) above zero on some joint, by more than two of its folds' standard errors: an excess
-// the folds do not tell from zero is not evidence of the effect (seed 83 case 39, below: fs1
-// 0.0008 +- 0.0005 once the static-friction rule dropped joint 1's rows at rest).
-bool holds_an_excess(const std::vector<Effect>& effects, std::size_t k, const CrossValidation& cv) {
+// friction) above zero on some joint, by more than two of its standard errors: the folds' spread
+// and how far slow and fast motion disagree (`systematic`, regime_error), as the parameters are
+// reported. An excess the folds do not tell from zero is not evidence of the effect (seed 83 case
+// 39, below: fs1 0.0008 +- 0.0005 once the static-friction rule dropped joint 1's rows at rest);
+// nor is one that slow and fast motion read differently by more than itself: blind seed 211 case
+// 54, a rigid-plant Coulomb friction of the Kraft's joint 1 beside a gain of that joint, was named
+// a Stribeck friction with fs1 0.0049 +- 0.013 (the folds' error alone a few times smaller).
+bool holds_an_excess(const std::vector<Effect>& effects, std::size_t k, const CrossValidation& cv,
+                     const Eigen::VectorXd& systematic) {
   Eigen::Index at = 0;
   for (std::size_t i = 0; i < k; ++i) at += effects[i].columns.cols();
   const Effect& e = effects[k];
   for (std::size_t c = 0; c < e.parameters.size(); ++c) {
     const Eigen::Index column = at + static_cast<Eigen::Index>(c);
-    if (e.parameters[c].rfind("fs", 0) == 0 && cv.theta[column] > kExcessErrors * cv.theta_error[column]) return true;
+    const double error = std::hypot(cv.theta_error[column], systematic[column]);
+    if (e.parameters[c].rfind("fs", 0) == 0 && cv.theta[column] > kExcessErrors * error) return true;
   }
   return false;
 }
@@ -690,12 +696,12 @@ bool holds_an_excess(const std::vector<Effect>& effects, std::size_t k, const Cr
 // case 49: a PUMA Coulomb friction of 2.76 N m, an exact sign at 81 Hz, read as a Stribeck friction
 // with fs1 0.72 at 0.02 rad/s).
 void coulomb_where_no_excess(Diagnosis& out, std::size_t k, const Eigen::VectorXd& r0, const Eigen::VectorXd& weight,
-                             Eigen::Index n) {
+                             Eigen::Index n, const std::vector<RegimeSplit>& splits) {
   const Effect& stribeck = out.accepted_effects[k];
   if (stribeck.name != "stribeck_friction") return;
   if (stribeck.profile > kTurnOverBand &&
-      holds_an_excess(out.accepted_effects, k,
-                      fit_together(out.accepted_effects, r0, weight, out.folds, out.away, n))) {
+      holds_an_excess(out.accepted_effects, k, fit_together(out.accepted_effects, r0, weight, out.folds, out.away, n),
+                      regime_error(out.accepted_effects, r0, weight, out.folds, out.away, n, splits))) {
     return;
   }
   Effect coulomb = kept_columns(stribeck, [&](std::size_t c) { return stribeck.parameters[c].rfind("fc", 0) == 0; });
@@ -709,6 +715,39 @@ void coulomb_where_no_excess(Diagnosis& out, std::size_t k, const Eigen::VectorX
   r.profile = 0;
 }
 
+// Effects[k]'s profile point chosen again beside the other accepted effects (rechoose_points).
+void rechoose_point(Diagnosis& out, std::size_t k, const std::deque<Effect>& effects, const Eigen::VectorXd& r0,
+                    const Eigen::VectorXd& weight, Eigen::Index n) {
+  const Effect chosen = out.accepted_effects[k];
+  auto error = [&]() {
+    const CrossValidation cv = fit_together(out.accepted_effects, r0, weight, out.folds, out.away, n);
+    double sum = 0;
+    for (Eigen::Index r = 0; r < r0.size(); ++r) {
+      const double w = out.away[r] * weight[r % n] * weight[r % n];
+      sum += w * cv.heldout[r] * cv.heldout[r];
+    }
+    return sum;
+  };
+  double least = error();
+  Effect best = chosen;
+  for (const Effect& point : effects) {
+    if (point.name != chosen.name || point.profile == chosen.profile) continue;
+    Effect mine = kept_columns(point, [&](std::size_t c) {
+      return std::find(chosen.parameters.begin(), chosen.parameters.end(), point.parameters[c]) !=
+             chosen.parameters.end();
+    });
+    if (mine.columns.cols() != chosen.columns.cols()) continue;
+    out.accepted_effects[k] = std::move(mine);
+    const double e = error();
+    if (e < least) {
+      least = e;
+      best = out.accepted_effects[k];
+    }
+  }
+  out.accepted_effects[k] = best;
+  out.selected[k].profile = best.profile;
+}
+
 // Each accepted friction profile's point (a Stribeck scale) chosen again beside all the accepted
 // effects, by the joint fit's held-out error on the rows away from zero velocity (as the search
 // chose it): a scale picked before the viscous friction of its joint was fitted is bent to mimic
@@ -717,39 +756,14 @@ void coulomb_where_no_excess(Diagnosis& out, std::size_t k, const Eigen::VectorX
 // surface: chosen again among its grid's points beside a payload, it moved the payload's mass by 5 %
 // (seed 23 case 54).
 void rechoose_points(Diagnosis& out, const std::deque<Effect>& effects, const Eigen::VectorXd& r0,
-                     const Eigen::VectorXd& weight, Eigen::Index n) {
-  if (out.accepted_effects.size() < 2) return;
+                     const Eigen::VectorXd& weight, Eigen::Index n, const std::vector<RegimeSplit>& splits) {
   for (std::size_t k = 0; k < out.accepted_effects.size(); ++k) {
     const Effect chosen = out.accepted_effects[k];
     if (chosen.profile_name.empty() || !is_friction(chosen)) continue;
-    auto error = [&]() {
-      const CrossValidation cv = fit_together(out.accepted_effects, r0, weight, out.folds, out.away, n);
-      double sum = 0;
-      for (Eigen::Index r = 0; r < r0.size(); ++r) {
-        const double w = out.away[r] * weight[r % n] * weight[r % n];
-        sum += w * cv.heldout[r] * cv.heldout[r];
-      }
-      return sum;
-    };
-    double least = error();
-    Effect best = chosen;
-    for (const Effect& point : effects) {
-      if (point.name != chosen.name || point.profile == chosen.profile) continue;
-      Effect mine = kept_columns(point, [&](std::size_t c) {
-        return std::find(chosen.parameters.begin(), chosen.parameters.end(), point.parameters[c]) !=
-               chosen.parameters.end();
-      });
-      if (mine.columns.cols() != chosen.columns.cols()) continue;
-      out.accepted_effects[k] = std::move(mine);
-      const double e = error();
-      if (e < least) {
-        least = e;
-        best = out.accepted_effects[k];
-      }
-    }
-    out.accepted_effects[k] = best;
-    out.selected[k].profile = best.profile;
-    coulomb_where_no_excess(out, k, r0, weight, n);
+    // Alone, a friction's point is where the search left it; whether its excess holds is asked
+    // all the same (until the twenty-first session only beside another effect).
+    if (out.accepted_effects.size() >= 2) rechoose_point(out, k, effects, r0, weight, n);
+    coulomb_where_no_excess(out, k, r0, weight, n, splits);
   }
 }
 
@@ -1612,9 +1626,10 @@ Diagnosis diagnose(const Dataset& d, const pipeline::Derivation& derivation) {
     baseline = chosen->cv.heldout;
   }
   out.final_after = joint_rms(baseline, n);
-  rechoose_points(out, effects, r0, weight, n);
+  const std::vector<RegimeSplit> splits = regime_splits(d, away);
+  rechoose_points(out, effects, r0, weight, n, splits);
   one_effect_for_two_steps(out, step_alternatives, r0, weight, n, step_parts);
-  refit_together(out, r0, weight, n, regime_splits(d, away), std::move(step_parts));
+  refit_together(out, r0, weight, n, splits, std::move(step_parts));
 
   set_verdict(out, n);
   return out;
