@@ -105,6 +105,19 @@ TEST(BlindBenchCase, PandaStribeckBesideASmallerCoulombOfAnotherJointLeads) {
               {{"fs1", stribeck.size, 0.1 * stribeck.size}, {"fc4", coulomb.size, 0.1 * coulomb.size}});
 }
 
+// Case 14 of the blind seed 211 (Panda, 1 kHz): a torque gain of joint 7 (20 % of its torque)
+// beside a Coulomb friction of joint 1 (half as big). The first step accepted a Coulomb friction
+// of joints 1 and 7 (its joint 7 mimicking the gain), the gain of joint 7 came second, and the
+// joint refit narrowed the friction to joint 1; the steps kept the figures of the friction as
+// accepted (joint 7's gap in its step), and the verdict named it. Stated again with the effects
+// as narrowed, the gain removes the most and leads.
+TEST(BlindBenchCase, PandaGainLeadsAFrictionNarrowedOffItsJoint) {
+  const Injection gain{.effect = "torque_gain", .joint = 6, .size = 1.22};
+  const Injection coulomb{.effect = "coulomb_friction", .joint = 0, .size = 0.04767716184435421};
+  expect_case(diagnosed("panda", {gain, coulomb}, 1000, 211U * 1000U + 14U), "torque_gain", {7},
+              {{"gain7", gain.size, 0.1 * (gain.size - 1.0)}, {"fc1", coulomb.size, 0.1 * coulomb.size}});
+}
+
 // Case 49 of the blind seed 43 (PUMA 560, 500 Hz): a torque gain of joint 2 (5 % of the torque)
 // beside an elastic joint 3 (half as big). The gain, narrowed to joint 2, gave way to the whole
 // inertial parameter set, which two smaller effects together explain as well; the pair's weaker
