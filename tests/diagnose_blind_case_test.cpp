@@ -110,7 +110,7 @@ TEST(BlindBenchCase, PandaStribeckBesideASmallerCoulombOfAnotherJointLeads) {
 // of joints 1 and 7 (its joint 7 mimicking the gain), the gain of joint 7 came second, and the
 // joint refit narrowed the friction to joint 1; the steps kept the figures of the friction as
 // accepted (joint 7's gap in its step), and the verdict named it. Stated again with the effects
-// as narrowed, the gain removes the most and leads.
+// as narrowed, the gain's step removes more than the friction's and leads.
 TEST(BlindBenchCase, PandaGainLeadsAFrictionNarrowedOffItsJoint) {
   const Injection gain{.effect = "torque_gain", .joint = 6, .size = 1.22};
   const Injection coulomb{.effect = "coulomb_friction", .joint = 0, .size = 0.04767716184435421};
