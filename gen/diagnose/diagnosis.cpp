@@ -1045,13 +1045,6 @@ void read_free_of_torque_noise(const std::vector<Effect>& effects, Candidate& jo
   joint.read_error = unbiased.theta_error;
 }
 
-// Once every effect is in: all of them fitted together, each per-joint effect narrowed once more
-// to the joints its own columns still carry (an offset of joint 3 that only stood in for a gain
-// of joint 5 until the gain came in is dropped), and every effect's parameters read from that
-// joint fit rather than from the step that accepted it; one whose own columns carry nothing any
-// more is dropped. The stated errors add to the folds' spread how far the fit moves between
-// regimes of the motion (regime_error); the parameters are read in applied torque and, a spring's,
-// free of the logged torque's noise (read_free_of_torque_noise).
 // The held-out residual after each step when `effects` are added in `order`, one at a time.
 std::vector<CrossValidation> steps_in_order(const std::vector<Effect>& effects, const std::vector<std::size_t>& order,
                                             const Eigen::VectorXd& r0, const Eigen::VectorXd& weight,
@@ -1074,7 +1067,9 @@ std::vector<CrossValidation> steps_in_order(const std::vector<Effect>& effects, 
 // still carried joint 7's gap (0.0498 -> 0.0034 N m) in its figures and in the verdict, and the
 // gain's step almost nothing. (Ordered by what each removes alone, a payload beside a torque gain
 // of the Kraft's joint 2, which alone it partly mimics, went first: seed 79 case 24.)
-void restate_steps(Diagnosis& out, const Eigen::VectorXd& r0, const Eigen::VectorXd& weight, Eigen::Index n) {
+// Returns the fit of every effect together in the new order (the joint fit).
+CrossValidation restate_steps(Diagnosis& out, const Eigen::VectorXd& r0, const Eigen::VectorXd& weight,
+                              Eigen::Index n) {
   const std::size_t m = out.accepted_effects.size();
   const Eigen::Index samples = r0.size() / n;
   auto removed = [&](const std::vector<CrossValidation>& fits) {
@@ -1089,18 +1084,19 @@ void restate_steps(Diagnosis& out, const Eigen::VectorXd& r0, const Eigen::Vecto
   };
   std::vector<std::size_t> order(m);
   std::iota(order.begin(), order.end(), std::size_t{0});
-  const std::vector<double> as_accepted = removed(steps_in_order(out.accepted_effects, order, r0, weight, out, n));
+  std::vector<CrossValidation> fits = steps_in_order(out.accepted_effects, order, r0, weight, out, n);
+  const std::vector<double> as_accepted = removed(fits);
   std::stable_sort(order.begin(), order.end(),
                    [&](std::size_t a, std::size_t b) { return as_accepted[a] > as_accepted[b]; });
-  std::vector<CrossValidation> fits = steps_in_order(out.accepted_effects, order, r0, weight, out, n);
+  if (!std::is_sorted(order.begin(), order.end()))
+    fits = steps_in_order(out.accepted_effects, order, r0, weight, out, n);
   std::vector<Effect> effects;
   std::vector<RankedEffect> steps;
   Eigen::VectorXd baseline = r0;
   for (std::size_t s = 0; s < m; ++s) {
     effects.push_back(out.accepted_effects[order[s]]);
     Candidate c;
-    c.effect = &effects.back();
-    c.cv = std::move(fits[s]);
+    c.cv = fits[s];
     set_shrink(c, baseline, weight, n, &out.scored);
     RankedEffect r = out.selected[order[s]];
     r.before = joint_rms(baseline, n);
@@ -1113,8 +1109,16 @@ void restate_steps(Diagnosis& out, const Eigen::VectorXd& r0, const Eigen::Vecto
   }
   out.accepted_effects = std::move(effects);
   out.selected = std::move(steps);
+  return std::move(fits.back());
 }
 
+// Once every effect is in: all of them fitted together, each per-joint effect narrowed once more
+// to the joints its own columns still carry (an offset of joint 3 that only stood in for a gain
+// of joint 5 until the gain came in is dropped), and every effect's parameters read from that
+// joint fit rather than from the step that accepted it; one whose own columns carry nothing any
+// more is dropped. The stated errors add to the folds' spread how far the fit moves between
+// regimes of the motion (regime_error); the parameters are read in applied torque and, a spring's,
+// free of the logged torque's noise (read_free_of_torque_noise).
 void refit_together(Diagnosis& out, const Eigen::VectorXd& r0, const Eigen::VectorXd& weight, Eigen::Index n,
                     const std::vector<RegimeSplit>& splits, std::vector<Eigen::VectorXd> parts) {
   if (out.accepted_effects.empty()) return;
@@ -1150,10 +1154,7 @@ void refit_together(Diagnosis& out, const Eigen::VectorXd& r0, const Eigen::Vect
     out.final_after = joint_rms(r0, n);
     return;
   }
-  if (narrowed_any) {
-    restate_steps(out, r0, weight, n);
-    joint.cv = fit();
-  }
+  if (narrowed_any) joint.cv = restate_steps(out, r0, weight, n);
   arm_rows_in_logged_torque(out.accepted_effects, joint.cv, fit, n);
   joint.after = joint_rms(joint.cv.heldout, n);
   read_free_of_torque_noise(out.accepted_effects, joint, r0, weight, out.folds, out.away, n);
