@@ -363,6 +363,31 @@ std::vector<int> own_joints(const Candidate& c, Eigen::Index offset, const Eigen
   return joints;
 }
 
+// The 95 % interval of a fitted column's coefficient `theta` (half-width `half`, Student's t over
+// the folds) read as its physical value: the reading is monotonic on each side of its pole (a
+// compliance of 0, a gain column of -1), so the ends map to the ends; an interval that reaches
+// the pole is unbounded on that side (a spring the folds cannot tell from rigid).
+std::pair<double, double> read_interval(Reading reading, double theta, double half) {
+  const double pole = reading == Reading::reciprocal ? 0.0 : (reading == Reading::gain ? -1.0 : 0.0);
+  const double a = theta - half, b = theta + half;
+  const double inf = std::numeric_limits<double>::infinity();
+  if (reading != Reading::as_is && a <= pole && pole <= b) {
+    // The side of the value runs from the nearer end to infinity (the reading falls on both
+    // sides of the pole: 1/theta and 1/(1 + theta) decrease).
+    return theta > pole ? std::pair{physical(reading, b), inf} : std::pair{-inf, physical(reading, a)};
+  }
+  const double x = physical(reading, a), y = physical(reading, b);
+  return {std::min(x, y), std::max(x, y)};
+}
+
+// A derived value's 95 % interval, symmetric to first order (a point from a force and moments).
+FittedParameter symmetric_interval(FittedParameter p) {
+  const double half = student95(kFolds - 1) * p.error;
+  p.low = p.value - half;
+  p.high = p.value + half;
+  return p;
+}
+
 // A point of action in the link frame from a total and its first moments (c = M / F): a
 // contact's from its force and moments, a load's from its mass and m c.
 void add_point(RankedEffect& r, const std::string& total, const std::string& moment_prefix) {
@@ -378,7 +403,7 @@ void add_point(RankedEffect& r, const std::string& total, const std::string& mom
     const FittedParameter moment = find(moment_prefix + axis);
     const double value = moment.value / whole.value;
     const double error = std::hypot(moment.error, value * whole.error) / std::abs(whole.value);
-    r.parameters.push_back({std::string("point_") + axis, value, error});
+    r.parameters.push_back(symmetric_interval({std::string("point_") + axis, value, error}));
   }
 }
 
@@ -393,8 +418,8 @@ void add_friction_coefficient(RankedEffect& r) {
   const FittedParameter friction = p[spring ? "friction_stiffness" : "friction_force"];
   if (normal.value == 0) return;
   const double mu = friction.value / normal.value;
-  r.parameters.push_back(
-      {"friction_coefficient", mu, std::hypot(friction.error, mu * normal.error) / std::abs(normal.value)});
+  r.parameters.push_back(symmetric_interval(
+      {"friction_coefficient", mu, std::hypot(friction.error, mu * normal.error) / std::abs(normal.value)}));
 }
 
 // A held contact's point is the gate's (the search's resolution, not a fit).
@@ -434,12 +459,14 @@ RankedEffect describe(const Candidate& c, const Eigen::VectorXd& before, Eigen::
     const double theta = scale * read[offset + k];
     const double error = scale * (c.systematic.size() > 0 ? std::hypot(spread[offset + k], c.systematic[offset + k])
                                                           : spread[offset + k]);
-    const double value = physical(e.reading[static_cast<std::size_t>(k)], theta);
+    const Reading reading = e.reading[static_cast<std::size_t>(k)];
+    const double value = physical(reading, theta);
     // First-order propagation of the error through the reading.
     const double derivative =
-        std::abs(physical(e.reading[static_cast<std::size_t>(k)], theta + 1e-6 * (1 + std::abs(theta))) - value) /
-        (1e-6 * (1 + std::abs(theta)));
-    r.parameters.push_back({e.parameters[static_cast<std::size_t>(k)], value, derivative * error});
+        std::abs(physical(reading, theta + 1e-6 * (1 + std::abs(theta))) - value) / (1e-6 * (1 + std::abs(theta)));
+    FittedParameter p{e.parameters[static_cast<std::size_t>(k)], value, derivative * error};
+    std::tie(p.low, p.high) = read_interval(reading, theta, student95(kFolds - 1) * error);
+    r.parameters.push_back(p);
   }
   if (e.family == "contact") {
     const ContactPoint at = ContactPoint::of(e);

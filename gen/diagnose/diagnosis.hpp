@@ -6,6 +6,7 @@
 #pragma once
 
 #include <Eigen/Dense>
+#include <limits>
 #include <optional>
 #include <string>
 #include <vector>
@@ -20,6 +21,11 @@ namespace dyncc::diagnose {
 struct FittedParameter {
   std::string name;             // "fc2", "mass", "delay", ...
   double value = 0, error = 0;  // physical value (stiffness, gain, ... read from the column)
+  // Its 95 % interval: Student's t over the folds (the error is a jackknife standard error with
+  // kFolds - 1 degrees of freedom, so two errors cover only 88 %), read through the same reading
+  // as the value (a stiffness's is not symmetric; a bound past the reading's pole is infinite).
+  // NaN where the value is not fitted over folds (a search's resolution, a gate's point).
+  double low = std::numeric_limits<double>::quiet_NaN(), high = std::numeric_limits<double>::quiet_NaN();
 };
 
 struct RankedEffect {

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
+#include <cmath>
 #include <utility>
 #include <vector>
 
@@ -26,8 +27,13 @@ nlohmann::json vector_json(const Eigen::VectorXd& v) {
 
 nlohmann::json effect_json(const RankedEffect& r) {
   nlohmann::json parameters = nlohmann::json::array();
-  for (const FittedParameter& p : r.parameters)
-    parameters.push_back({{"name", p.name}, {"value", p.value}, {"error", p.error}});
+  for (const FittedParameter& p : r.parameters) {
+    nlohmann::json one{{"name", p.name}, {"value", p.value}, {"error", p.error}};
+    // An unbounded end is null (JSON has no infinity).
+    auto end = [](double x) { return std::isfinite(x) ? nlohmann::json(x) : nlohmann::json(nullptr); };
+    if (!std::isnan(p.low)) one["interval95"] = {end(p.low), end(p.high)};
+    parameters.push_back(std::move(one));
+  }
   nlohmann::json out{{"effect", r.effect},
                      {"joints", r.joints},
                      {"parameters", parameters},
@@ -153,11 +159,13 @@ std::string diagnosis_text(const Dataset& data, const Diagnosis& d) {
   }
   out += d.selected.empty() ? "\nselected:\n  nothing\n"
                             : "\nselected (+- one standard error: the folds' spread and how far slow and fast "
-                              "motion disagree):\n";
+                              "motion disagree; in brackets the 95 % interval, Student's t over the folds):\n";
   for (const RankedEffect& r : d.selected) {
     out += fmt::format("  {} on joints {}: shrink {:.1f} %\n", r.effect, joints_text(r.joints), 100 * r.shrink);
-    for (const FittedParameter& p : r.parameters)
-      out += fmt::format("    {} = {:.5g} +- {:.2g}\n", p.name, p.value, p.error);
+    for (const FittedParameter& p : r.parameters) {
+      const std::string interval = std::isnan(p.low) ? std::string() : fmt::format("  [{:.5g}, {:.5g}]", p.low, p.high);
+      out += fmt::format("    {} = {:.5g} +- {:.2g}{}\n", p.name, p.value, p.error, interval);
+    }
   }
   out += fmt::format("\nverdict: {} (joints {}, confidence {:.2f})\n", d.verdict.effect, joints_text(d.verdict.joints),
                      d.verdict.confidence);

@@ -102,10 +102,17 @@ std::string ranking_html(const nlohmann::json& ranking) {
 }
 
 std::string parameters_html(const nlohmann::json& effect) {
-  std::string html = "<table><tr><th>parameter</th><th>value</th><th>&plusmn; error</th></tr>\n";
+  std::string html =
+      "<table><tr><th>parameter</th><th>value</th><th>&plusmn; error</th><th>95&nbsp;% interval</th></tr>\n";
   for (const auto& p : effect["parameters"]) {
-    html += fmt::format("<tr><td>{}</td><td>{}</td><td>{}</td></tr>\n", html_escape(p["name"].get<std::string>()),
-                        number(p["value"]), number(p["error"]));
+    std::string interval = "-";  // not fitted over the folds (a search's resolution)
+    if (p.contains("interval95")) {
+      const auto& i = p["interval95"];
+      interval = fmt::format("{} to {}", i[0].is_null() ? "&minus;&infin;" : number(i[0]),
+                             i[1].is_null() ? "&infin;" : number(i[1]));
+    }
+    html += fmt::format("<tr><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>\n",
+                        html_escape(p["name"].get<std::string>()), number(p["value"]), number(p["error"]), interval);
   }
   return html + "</table>\n";
 }
