@@ -119,6 +119,40 @@ TEST(BlindBenchCase, PandaGainLeadsAFrictionNarrowedOffItsJoint) {
               {{"gain7", gain.size, 0.1 * (gain.size - 1.0)}, {"fc1", coulomb.size, 0.1 * coulomb.size}});
 }
 
+// Case 34 of seed 47 (PUMA 560, 81 Hz): a Coulomb friction of 5.53 N m on joint 1 beside a sensor
+// delay. The drive's own Coulomb friction (26 N m in the description) is most of joint 1's torque,
+// so a torque gain there fits the same sign column, and the step named "torque_gain or
+// stribeck_friction or coulomb_friction" with the gain first (0.834). The log cannot tell them
+// apart; each alternative is fitted in the gain's place beside the delay, so the user is shown
+// the Coulomb friction the log holds if that is the explanation.
+TEST(BlindBenchCase, AnAlternativeIsFittedInThePlaceOfTheEffectItTiesWith) {
+  const Injection coulomb{.effect = "coulomb_friction", .joint = 0, .size = 5.5253348052934115};
+  const Injection delay{.effect = "sensor_delay", .joint = 5, .size = 0.015426726874363961};
+  const BenchCase c = diagnosed("puma560", {coulomb, delay}, 81, 47U * 1000U + 34U);
+  SCOPED_TRACE(diagnose::diagnosis_text(c.data, c.diagnosis));
+  const diagnose::FittedParameter* fc1 = nullptr;
+  double named = 0, in_place = 0;
+  for (const auto& r : c.diagnosis.selected) {
+    for (const auto& a : r.alternatives) {
+      if (a.effect != "coulomb_friction") continue;
+      EXPECT_NE(r.effect.find(" or coulomb_friction"), std::string::npos) << r.effect;
+      EXPECT_EQ(r.joints, std::vector<int>{1});
+      for (const auto& p : a.parameters) {
+        if (p.name == "fc1") fc1 = &p;
+      }
+      named = a.named_selection_shrink;
+      in_place = a.selection_shrink;
+    }
+  }
+  ASSERT_NE(fc1, nullptr) << "no Coulomb friction of joint 1 stated as an alternative";
+  EXPECT_NEAR(fc1->value, coulomb.size, 0.1 * coulomb.size);
+  EXPECT_LT(fc1->low, fc1->value);
+  EXPECT_GT(fc1->high, fc1->value);
+  // A tie: the selection removes about as much either way (the step could not tell them apart).
+  EXPECT_NEAR(in_place, named, 0.05);
+  EXPECT_NEAR(c.fitted.at("delay"), delay.size, 1.0 / 81);
+}
+
 // Case 49 of the blind seed 43 (PUMA 560, 500 Hz): a torque gain of joint 2 (5 % of the torque)
 // beside an elastic joint 3 (half as big). The gain, narrowed to joint 2, gave way to the whole
 // inertial parameter set, which two smaller effects together explain as well; the pair's weaker

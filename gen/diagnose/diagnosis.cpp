@@ -9,6 +9,7 @@
 #include <numbers>
 #include <numeric>
 #include <optional>
+#include <string_view>
 
 #include "diagnose/contact_effect.hpp"
 #include "diagnose/crossval.hpp"
@@ -1515,6 +1516,73 @@ std::map<std::string, Candidate> best_candidates(const ContactRows& contacts, co
   return best;
 }
 
+// The per-joint effects a selected "A or B" names beside A, each fitted in A's place (narrowed to
+// A's joints, at its best profile point) beside every other selected effect, as the final joint
+// fit fits A. The log cannot tell them from A, so the user is shown what each would read: a torque
+// gain of 0.834 on the PUMA's joint 1, whose torque is mostly the drive's own Coulomb friction,
+// is a Coulomb friction of 5.47 N m there (seed 47 case 34, where that is the truth: 5.53).
+// Their errors are the folds' spread alone (no regime split, no correction for the torque's
+// noise): a reading for comparison, not a selected effect's full statement.
+void fit_alternatives_in_place(Diagnosis& out, const std::deque<Effect>& effects, const Eigen::VectorXd& r0,
+                               const Eigen::VectorXd& weight, Eigen::Index n, const pipeline::Derivation& derivation) {
+  constexpr std::string_view kOr = " or ";
+  std::optional<double> named_shrink;  // the selection's joint fit as named (once, where needed)
+  Eigen::Index at = 0;
+  for (std::size_t k = 0; k < out.selected.size(); ++k) {
+    RankedEffect& r = out.selected[k];
+    const Effect& chosen = out.accepted_effects[k];
+    const Eigen::Index width = chosen.columns.cols();
+    std::vector<int> joints;  // 0-based
+    for (const int j : r.joints) joints.push_back(j - 1);
+    // The parameters the other selected effects fit (an alternative's column of the same name is
+    // theirs already: a Stribeck friction's fc2 beside a selected Coulomb friction of joint 2).
+    std::vector<std::string> others;
+    for (std::size_t i = 0; i < out.accepted_effects.size(); ++i) {
+      if (i == k) continue;
+      const Effect& e = out.accepted_effects[i];
+      for (std::size_t c = 0; c < e.parameters.size(); ++c) {
+        if (e.joint_of[c] >= 0) others.push_back(e.parameters[c]);
+      }
+    }
+    std::size_t from = r.effect.find(kOr);
+    while (from != std::string::npos && !joints.empty() && per_joint(chosen)) {
+      const std::size_t next = r.effect.find(kOr, from + kOr.size());
+      const std::string name =
+          r.effect.substr(from + kOr.size(), next == std::string::npos ? std::string::npos : next - from - kOr.size());
+      from = next;
+      std::optional<Candidate> best;
+      Effect best_effect;
+      for (const Effect& whole : effects) {  // each profile point of the family
+        if (whole.name != name || !per_joint(whole)) continue;
+        Effect mine = without_fitted(narrowed(whole, joints), others);
+        if (mine.columns.cols() == 0) continue;
+        std::vector<Effect> in_place = out.accepted_effects;
+        in_place[k] = mine;
+        Candidate c;
+        c.cv = fit_together(in_place, r0, weight, out.folds, out.away, n);
+        set_shrink(c, r0, weight, n, &out.scored);
+        if (!best || c.shrink > best->shrink) {
+          best = std::move(c);
+          best_effect = std::move(mine);
+        }
+      }
+      if (!best) continue;
+      if (!named_shrink) {
+        Candidate named;
+        named.cv = fit_together(out.accepted_effects, r0, weight, out.folds, out.away, n);
+        set_shrink(named, r0, weight, n, &out.scored);
+        named_shrink = named.shrink;
+      }
+      best->effect = &best_effect;
+      best->after = joint_rms(best->cv.heldout, n);
+      const RankedEffect read = describe(*best, r.before, at, out.gap.torque_rms);
+      r.alternatives.push_back(
+          {name, read.parameters, best->shrink, *named_shrink, plausible(read, derivation, out.gap)});
+    }
+    at += width;
+  }
+}
+
 // Whether a candidate may be accepted: plausible, significant (for a friction, possibly only where
 // its joints move), material, and removing kAcceptShrink of the held-out error. A friction effect
 // must also explain residual where the velocity is away from zero: one that only fits the rows
@@ -1525,6 +1593,21 @@ bool acceptable(const Candidate* c) {
   const bool significant = c->low > 0.0 || c->significant_only_away();
   return c->plausible && c->shrink >= kAcceptShrink && significant && c->material >= kMaterial &&
          (!judged_away_from_zero(*c->effect) || c->away_shrink >= kAcceptShrink);
+}
+
+// The selection's steps judged together once they are all taken: the profile points chosen again
+// beside each other, one effect for two steps where it explains both, the joint refit, and the
+// named alternatives fitted in the place of the effect they tie with.
+void settle_selection(Diagnosis& out, const Dataset& d, const std::deque<Effect>& effects,
+                      const std::vector<std::vector<StepAlternative>>& step_alternatives,
+                      std::vector<Eigen::VectorXd> step_parts, const pipeline::Derivation& derivation) {
+  const Eigen::Index n = d.n;
+  const Eigen::VectorXd& r0 = d.residual;
+  const std::vector<RegimeSplit> splits = regime_splits(d, out.away);
+  rechoose_points(out, effects, r0, out.weight, n, splits);
+  one_effect_for_two_steps(out, step_alternatives, r0, out.weight, n, step_parts);
+  refit_together(out, r0, out.weight, n, splits, std::move(step_parts));
+  fit_alternatives_in_place(out, effects, r0, out.weight, n, derivation);
 }
 
 Diagnosis diagnose(const Dataset& d, const pipeline::Derivation& derivation) {
@@ -1720,11 +1803,7 @@ Diagnosis diagnose(const Dataset& d, const pipeline::Derivation& derivation) {
     baseline = chosen->cv.heldout;
   }
   out.final_after = joint_rms(baseline, n);
-  const std::vector<RegimeSplit> splits = regime_splits(d, away);
-  rechoose_points(out, effects, r0, weight, n, splits);
-  one_effect_for_two_steps(out, step_alternatives, r0, weight, n, step_parts);
-  refit_together(out, r0, weight, n, splits, std::move(step_parts));
-
+  settle_selection(out, d, effects, step_alternatives, std::move(step_parts), derivation);
   set_verdict(out, n);
   return out;
 }

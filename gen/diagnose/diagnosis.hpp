@@ -28,6 +28,18 @@ struct FittedParameter {
   double low = std::numeric_limits<double>::quiet_NaN(), high = std::numeric_limits<double>::quiet_NaN();
 };
 
+/// An effect that a selected "A or B" names beside the one it fits (B), fitted in A's place beside
+/// every other selected effect: what B's parameters would read if B were the explanation, and how
+/// much the selection removes with it there (held out) against with A, which the log cannot tell
+/// apart (the same joints, within the folds' spread).
+struct AlternativeFit {
+  std::string effect;
+  std::vector<FittedParameter> parameters;  // their error: the folds' spread alone
+  double selection_shrink = 0;              // the joint fit of the selection with it in A's place
+  double named_selection_shrink = 0;        // ... and with A, as named
+  bool plausible = true;                    // its parameters make physical sense (as a selected effect's)
+};
+
 struct RankedEffect {
   std::string effect;  // vocabulary name, or "A or B"
   std::string family;
@@ -44,6 +56,8 @@ struct RankedEffect {
   // Friction effects: the shrink on the rows where the velocity is away from zero (what explains
   // residual only near zero is how the friction turns over, not a friction effect).
   std::optional<double> shrink_away_from_zero;
+  // Selected only: the per-joint effects named beside it ("A or B"), each fitted in its place.
+  std::vector<AlternativeFit> alternatives;
 };
 
 struct Verdict {

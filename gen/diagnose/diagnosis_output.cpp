@@ -25,15 +25,25 @@ nlohmann::json vector_json(const Eigen::VectorXd& v) {
   return out;
 }
 
-nlohmann::json effect_json(const RankedEffect& r) {
+nlohmann::json parameters_json(const std::vector<FittedParameter>& fitted) {
   nlohmann::json parameters = nlohmann::json::array();
-  for (const FittedParameter& p : r.parameters) {
+  for (const FittedParameter& p : fitted) {
     nlohmann::json one{{"name", p.name}, {"value", p.value}, {"error", p.error}};
     // An unbounded end is null (JSON has no infinity).
     auto end = [](double x) { return std::isfinite(x) ? nlohmann::json(x) : nlohmann::json(nullptr); };
     if (!std::isnan(p.low)) one["interval95"] = {end(p.low), end(p.high)};
     parameters.push_back(std::move(one));
   }
+  return parameters;
+}
+
+std::string parameter_text(const FittedParameter& p) {
+  const std::string interval = std::isnan(p.low) ? std::string() : fmt::format("  [{:.5g}, {:.5g}]", p.low, p.high);
+  return fmt::format("{} = {:.5g} +- {:.2g}{}", p.name, p.value, p.error, interval);
+}
+
+nlohmann::json effect_json(const RankedEffect& r) {
+  const nlohmann::json parameters = parameters_json(r.parameters);
   nlohmann::json out{{"effect", r.effect},
                      {"joints", r.joints},
                      {"parameters", parameters},
@@ -45,6 +55,17 @@ nlohmann::json effect_json(const RankedEffect& r) {
                      {"plausible", r.plausible}};
   if (!r.profile_name.empty()) out[r.profile_name] = r.profile;
   if (r.shrink_away_from_zero) out["shrink_away_from_zero_velocity"] = *r.shrink_away_from_zero;
+  if (!r.alternatives.empty()) {
+    nlohmann::json alternatives = nlohmann::json::array();
+    for (const AlternativeFit& a : r.alternatives) {
+      alternatives.push_back({{"effect", a.effect},
+                              {"parameters", parameters_json(a.parameters)},
+                              {"selection_shrink", a.selection_shrink},
+                              {"named_selection_shrink", a.named_selection_shrink},
+                              {"plausible", a.plausible}});
+    }
+    out["alternatives"] = std::move(alternatives);
+  }
   return out;
 }
 
@@ -162,9 +183,13 @@ std::string diagnosis_text(const Dataset& data, const Diagnosis& d) {
                               "motion disagree; in brackets the 95 % interval, Student's t over the folds):\n";
   for (const RankedEffect& r : d.selected) {
     out += fmt::format("  {} on joints {}: shrink {:.1f} %\n", r.effect, joints_text(r.joints), 100 * r.shrink);
-    for (const FittedParameter& p : r.parameters) {
-      const std::string interval = std::isnan(p.low) ? std::string() : fmt::format("  [{:.5g}, {:.5g}]", p.low, p.high);
-      out += fmt::format("    {} = {:.5g} +- {:.2g}{}\n", p.name, p.value, p.error, interval);
+    for (const FittedParameter& p : r.parameters) out += fmt::format("    {}\n", parameter_text(p));
+    for (const AlternativeFit& a : r.alternatives) {
+      out += fmt::format(
+          "    or {} in its place (all selected effects then remove {:.1f} % held out, {:.1f} % as named; "
+          "+- the folds' spread){}:\n",
+          a.effect, 100 * a.selection_shrink, 100 * a.named_selection_shrink, a.plausible ? "" : ", implausible fit");
+      for (const FittedParameter& p : a.parameters) out += fmt::format("      {}\n", parameter_text(p));
     }
   }
   out += fmt::format("\nverdict: {} (joints {}, confidence {:.2f})\n", d.verdict.effect, joints_text(d.verdict.joints),

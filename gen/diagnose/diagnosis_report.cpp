@@ -128,6 +128,16 @@ std::string selected_html(const nlohmann::json& j) {
       html += fmt::format("<p>velocity scale {} rad/s</p>\n", number(s["velocity_scale"]));
     }
     html += parameters_html(s);
+    if (s.contains("alternatives")) {
+      for (const auto& a : s["alternatives"]) {
+        html += fmt::format(
+            "<p>or {} in its place: all selected effects then remove {} held out ({} as named){}; its errors "
+            "are the folds' spread alone</p>\n",
+            html_escape(a["effect"].get<std::string>()), percent(a["selection_shrink"]),
+            percent(a["named_selection_shrink"]), a["plausible"].get<bool>() ? "" : ", an implausible fit");
+        html += parameters_html(a);
+      }
+    }
   }
   const nlohmann::json& within = j["inertial_parameters"];
   html += fmt::format(
