@@ -193,9 +193,21 @@ std::optional<Eigen::VectorXd> modelled_effect_rms(const diagnose::Dataset& data
   return diagnose::joint_rms(data.condition(torque).col(0), n);
 }
 
+// Whether a fitted parameter meets the goal for its effect: within 10 % (a gain's
+// deviation from 1 within 10 %), a payload's mass within 3 %, a delay within one sample.
+bool within_goal(const std::string& effect, double fitted, double target, double rate) {
+  if (effect == "sensor_delay") return std::abs(fitted - target) <= 1.0 / rate;
+  if (effect == "payload") return std::abs(fitted - target) <= 0.03 * std::abs(target);
+  if (effect == "torque_gain") return std::abs(fitted - target) <= 0.1 * std::abs(target - 1.0);
+  return std::abs(fitted - target) <= 0.1 * std::abs(target);
+}
+
 struct Score {
   int cases = 0, top1 = 0, located = 0, locatable = 0, parameters_ok = 0, parameters = 0, closure_ok = 0, closures = 0;
   int covered = 0;  // fitted parameters whose truth lies within their stated 95 % interval
+  // Wrong top-1 verdicts that name the injected effect later in a tie ("A or B", B injected), and
+  // of those with a fit of B in A's place (AlternativeFit), the ones within the parameters' goal.
+  int ties = 0, tie_fits = 0, tie_fits_ok = 0;
 };
 
 std::string pct(int a, int b) {
@@ -234,6 +246,8 @@ std::string score_tables(const std::map<std::string, Score>& by_size, const std:
     into.cases += s.cases;
     into.top1 += s.top1;
     for (Score* x : {&all}) {
+      x->cases += s.cases;
+      x->top1 += s.top1;
       x->located += s.located;
       x->locatable += s.locatable;
       x->parameters += s.parameters;
@@ -241,6 +255,9 @@ std::string score_tables(const std::map<std::string, Score>& by_size, const std:
       x->covered += s.covered;
       x->closures += s.closures;
       x->closure_ok += s.closure_ok;
+      x->ties += s.ties;
+      x->tie_fits += s.tie_fits;
+      x->tie_fits_ok += s.tie_fits_ok;
     }
   }
   const Score none = by_size.contains("none") ? by_size.at("none") : Score{};
@@ -257,13 +274,16 @@ std::string score_tables(const std::map<std::string, Score>& by_size, const std:
       "| false alarms on effect-free logs <= 5 % | {} | {} |\n"
       "| held-out gap closure >= 80 % of the injected effect's (correctly named) | {} | {} |\n"
       "| parameters within 10 % (payload 3 %, delay one sample) | {} | {} |\n"
-      "| (not a goal) truth within the stated 95 % interval of the fitted parameter | {} | |\n",
+      "| (not a goal) truth within the stated 95 % interval of the fitted parameter | {} | |\n"
+      "| (not a goal) wrong top-1 effects that name the injected one later in a tie | {} | |\n"
+      "| (not a goal) ... whose fit in the named one's place is within the parameters' goal | {} | |\n",
       pct(large.top1, large.cases), verdict_of(large.top1, large.cases, 0.9, false), pct(small.top1, small.cases),
       verdict_of(small.top1, small.cases, 0.7, false), pct(all.located, all.locatable),
       verdict_of(all.located, all.locatable, 0.95, false), pct(none.cases - none.top1, none.cases),
       verdict_of(none.cases - none.top1, none.cases, 0.05, true), pct(all.closure_ok, all.closures),
       verdict_of(all.closure_ok, all.closures, 0.8, false), pct(all.parameters_ok, all.parameters),
-      verdict_of(all.parameters_ok, all.parameters, 1.0 - 1e-9, false), pct(all.covered, all.parameters));
+      verdict_of(all.parameters_ok, all.parameters, 1.0 - 1e-9, false), pct(all.covered, all.parameters),
+      pct(all.ties, all.cases - all.top1), pct(all.tie_fits_ok, all.tie_fits));
   const std::string effect_table = score_table("injected (largest) effect", by_effect);
   const std::string source_table = score_table("log from", by_source);
   return fmt::format("{}\n{}\n{}\n{}", goals, table, effect_table, source_table);
@@ -468,6 +488,23 @@ int run_sim2real_bench(const BenchOptions& o) {
     count_in(&Score::cases, true);
     const bool right = first == truth_name;
     count_in(&Score::top1, right);
+    // A wrong first name that a tie names the injected effect beside: the log could not tell them
+    // apart. Its fit in the named one's place (the diagnosis's `alternatives`), scored as a fit.
+    if (!right && !k.effects.empty() && verdict.find(" or " + truth_name) != std::string::npos) {
+      count_in(&Score::ties, true);
+      const auto [name, value] = measured_parameter(k.effects.front());
+      for (const auto& sel : result["selected"]) {
+        if (!sel.contains("alternatives")) continue;
+        for (const auto& a : sel["alternatives"]) {
+          if (a["effect"] != truth_name) continue;
+          for (const auto& p : a["parameters"]) {
+            if (name.empty() || p["name"] != name) continue;
+            count_in(&Score::tie_fits, true);
+            count_in(&Score::tie_fits_ok, within_goal(truth_name, p["value"].get<double>(), value, k.rate));
+          }
+        }
+      }
+    }
     std::string detail;
     if (!k.effects.empty()) {
       const auto& main = k.effects.front();
@@ -483,10 +520,7 @@ int run_sim2real_bench(const BenchOptions& o) {
           const double fitted = p["value"];
           const double error = p["error"];
           const double target = value;
-          const bool ok = main.effect == "sensor_delay"  ? std::abs(fitted - target) <= 1.0 / k.rate
-                          : main.effect == "payload"     ? std::abs(fitted - target) <= 0.03 * std::abs(target)
-                          : main.effect == "torque_gain" ? std::abs(fitted - target) <= 0.1 * std::abs(target - 1.0)
-                                                         : std::abs(fitted - target) <= 0.1 * std::abs(target);
+          const bool ok = within_goal(main.effect, fitted, target, k.rate);
           count_in(&Score::parameters, true);
           count_in(&Score::parameters_ok, ok);
           // Whether the stated uncertainty is honest: a miss of the goal within it is the noise of the

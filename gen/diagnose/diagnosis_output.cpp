@@ -182,7 +182,8 @@ std::string diagnosis_text(const Dataset& data, const Diagnosis& d) {
                             : "\nselected (+- one standard error: the folds' spread and how far slow and fast "
                               "motion disagree; in brackets the 95 % interval, Student's t over the folds):\n";
   for (const RankedEffect& r : d.selected) {
-    out += fmt::format("  {} on joints {}: shrink {:.1f} %\n", r.effect, joints_text(r.joints), 100 * r.shrink);
+    out += fmt::format("  {} on joints {}: shrink {:.1f} %{}\n", r.effect, joints_text(r.joints), 100 * r.shrink,
+                       r.plausible ? "" : " (implausible as the joint fit reads it)");
     for (const FittedParameter& p : r.parameters) out += fmt::format("    {}\n", parameter_text(p));
     for (const AlternativeFit& a : r.alternatives) {
       out += fmt::format(
@@ -190,6 +191,7 @@ std::string diagnosis_text(const Dataset& data, const Diagnosis& d) {
           "+- the folds' spread){}:\n",
           a.effect, 100 * a.selection_shrink, 100 * a.named_selection_shrink, a.plausible ? "" : ", implausible fit");
       for (const FittedParameter& p : a.parameters) out += fmt::format("      {}\n", parameter_text(p));
+      if (a.parameters.empty()) out += "      (no joint where its own columns carry a material part)\n";
     }
   }
   out += fmt::format("\nverdict: {} (joints {}, confidence {:.2f})\n", d.verdict.effect, joints_text(d.verdict.joints),
