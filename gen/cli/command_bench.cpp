@@ -202,6 +202,24 @@ bool within_goal(const std::string& effect, double fitted, double target, double
   return std::abs(fitted - target) <= 0.1 * std::abs(target);
 }
 
+// A wrong first name that a tie names the injected effect `e` beside ("A or B", B injected): the
+// log could not tell them apart. B's scored parameter as fitted in A's place (the diagnosis's
+// `alternatives`), for scoring as a fit.
+std::vector<double> tie_fits(const nlohmann::json& result, const diagnose::Injection& e) {
+  const auto [name, value] = measured_parameter(e);
+  std::vector<double> out;
+  for (const auto& sel : result["selected"]) {
+    if (name.empty() || !sel.contains("alternatives")) continue;
+    for (const auto& a : sel["alternatives"]) {
+      if (a["effect"] != e.effect) continue;
+      for (const auto& p : a["parameters"]) {
+        if (p["name"] == name) out.push_back(p["value"].get<double>());
+      }
+    }
+  }
+  return out;
+}
+
 struct Score {
   int cases = 0, top1 = 0, located = 0, locatable = 0, parameters_ok = 0, parameters = 0, closure_ok = 0, closures = 0;
   int covered = 0;  // fitted parameters whose truth lies within their stated 95 % interval
@@ -488,21 +506,12 @@ int run_sim2real_bench(const BenchOptions& o) {
     count_in(&Score::cases, true);
     const bool right = first == truth_name;
     count_in(&Score::top1, right);
-    // A wrong first name that a tie names the injected effect beside: the log could not tell them
-    // apart. Its fit in the named one's place (the diagnosis's `alternatives`), scored as a fit.
     if (!right && !k.effects.empty() && verdict.find(" or " + truth_name) != std::string::npos) {
       count_in(&Score::ties, true);
-      const auto [name, value] = measured_parameter(k.effects.front());
-      for (const auto& sel : result["selected"]) {
-        if (!sel.contains("alternatives")) continue;
-        for (const auto& a : sel["alternatives"]) {
-          if (a["effect"] != truth_name) continue;
-          for (const auto& p : a["parameters"]) {
-            if (name.empty() || p["name"] != name) continue;
-            count_in(&Score::tie_fits, true);
-            count_in(&Score::tie_fits_ok, within_goal(truth_name, p["value"].get<double>(), value, k.rate));
-          }
-        }
+      for (const double fitted : tie_fits(result, k.effects.front())) {
+        count_in(&Score::tie_fits, true);
+        count_in(&Score::tie_fits_ok,
+                 within_goal(truth_name, fitted, measured_parameter(k.effects.front()).second, k.rate));
       }
     }
     std::string detail;
