@@ -369,7 +369,7 @@ std::vector<int> own_joints(const Candidate& c, Eigen::Index offset, const Eigen
 // compliance of 0, a gain column of -1), so the ends map to the ends; an interval that reaches
 // the pole is unbounded on that side (a spring the folds cannot tell from rigid).
 std::pair<double, double> read_interval(Reading reading, double theta, double half) {
-  const double pole = reading == Reading::reciprocal ? 0.0 : (reading == Reading::gain ? -1.0 : 0.0);
+  const double pole = reading == Reading::gain ? -1.0 : 0.0;
   const double a = theta - half, b = theta + half;
   const double inf = std::numeric_limits<double>::infinity();
   if (reading != Reading::as_is && a <= pole && pole <= b) {
@@ -383,9 +383,7 @@ std::pair<double, double> read_interval(Reading reading, double theta, double ha
 
 // A derived value's 95 % interval, symmetric to first order (a point from a force and moments).
 FittedParameter symmetric_interval(FittedParameter p) {
-  const double half = student95(kFolds - 1) * p.error;
-  p.low = p.value - half;
-  p.high = p.value + half;
+  std::tie(p.low, p.high) = read_interval(Reading::as_is, p.value, student95(kFolds - 1) * p.error);
   return p;
 }
 
