@@ -1054,8 +1054,11 @@ bool compared_where_moving(const Effect& a, const Effect& b) {
 //   the gain also scales, the joint's Coriolis and friction torques, which act where it moves, and
 //   there the other kind left only 6-66 % more than the injected one, in every fold (blind seed 269
 //   cases 9 and 57: a Kraft tele-operation rotor inertia and gain of the base joint, each read as
-//   the other; seven more "A or B" with the injected one first). Of the ten logs checked (the
-//   twenty-fourth session's), none had the other kind leave less in every fold.
+//   the other; seven more "A or B" with the injected one first). Not where a friction of the same
+//   joint is not yet fitted: where the joint moves that friction is what is left, and a rotor
+//   inertia left less of it than the injected gain in every fold (blind seed 281 case 54, a gain
+//   beside a viscous friction, was "rotor_inertia or torque_gain", now rotor_inertia alone; 1 of
+//   the 11 decisions seen in the twenty-fourth session).
 template <typename Usable>
 const Candidate* closer_where_moving(const Candidate* pick, const Candidate& top,
                                      const std::vector<const Candidate*>& order, Usable usable, const StepState& s,
