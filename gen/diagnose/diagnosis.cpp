@@ -1089,8 +1089,7 @@ const Candidate* closer_where_moving(const Candidate* pick, const Candidate& top
         if (std::find(mine.begin(), mine.end(), j) != mine.end()) joints.push_back(j - 1);
       }
       if (joints.empty()) continue;
-      Candidate moving = *pick;  // only for the folds in which `joints` move
-      moving.away_heldout = heldout_fitted_away(*pick->effect, s.accepted, s.r0, s.weight, s.folds, s.away, n);
+      Candidate moving = *pick;  // only for the folds in which `joints` move (not what it leaves there)
       set_away_interval(moving, s.baseline, s.weight, s.away, joints, n);
       folds = moving.away_folds;
     }
