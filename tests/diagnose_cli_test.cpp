@@ -354,6 +354,28 @@ TEST(DiagnoseCommand, KraftBaseJointGainIsToldFromARotorInertiaWhereTheJointMove
   EXPECT_NEAR(fitted.at("gain1"), gain, 0.1 * (gain - 1.0));
 }
 
+// Blind bench seed 281, case 54: a torque gain of 1.11 on the Kraft's base joint beside a viscous
+// friction of that joint, the rigid plant's tele-operation log at 500 Hz. A gain above one makes the
+// joint look lighter, and a rotor inertia of -0.060 (the description's reflected inertia is 0.041)
+// explained as much; where the joint moves the friction, not yet fitted, is what is left, and that
+// rotor inertia left less of it than the gain in every fold, so the verdict was `rotor_inertia`
+// alone. A rotor inertia that reads a negative inertia is not named over the gain: the gain comes
+// first, the rotor inertia stays its alternative, and both effects are read within the goals.
+TEST(DiagnoseCommand, ARotorInertiaThatReadsNegativeIsNotNamedOverAGain) {
+  const double gain = 1.1100682115663905, fv = 0.10287944385495627;
+  const nlohmann::json d = diagnose_excited("teleop_gain_viscous",
+                                            effects_file_of({joint_effect("torque_gain", 1, "gain", gain),
+                                                             joint_effect("viscous_friction", 1, "fv", fv)}),
+                                            "--plant dyncc --trajectory teleop --rate 500 --seed 281054");
+  EXPECT_EQ(d["verdict"]["effect"].get<std::string>().substr(0, 11), "torque_gain") << d["verdict"].dump();
+  EXPECT_EQ(d["verdict"]["joints"], nlohmann::json::array({1})) << d["verdict"].dump();
+  const std::map<std::string, double> fitted = fitted_of(d);
+  ASSERT_TRUE(fitted.count("gain1") && fitted.count("fv1")) << d["selected"].dump();
+  EXPECT_NEAR(fitted.at("gain1"), gain, 0.1 * (gain - 1.0));
+  EXPECT_NEAR(fitted.at("fv1"), fv, 0.1 * fv);
+  EXPECT_EQ(fitted.count("ia1"), 0U) << d["selected"].dump();
+}
+
 // Blind bench seed 173, case 54: a Coulomb friction of the Kraft's joint 2 (10 % of the torque)
 // beside a viscous friction of joint 1, half as large, the rigid plant's tele-operation log at
 // 1 kHz. Viscous columns of joints 1 and 2 led (62 %: on joint 2 they mimic part of the Coulomb

@@ -1037,6 +1037,22 @@ bool compared_where_moving(const Effect& a, const Effect& b) {
          (a.family == "torque_gain" && b.family == "rotor_inertia");
 }
 
+// Whether `c` may be named over a rival where its joints move: a rotor inertia only if it reads an
+// inertia the drive can have, its fitted change and the description's reflected inertia together
+// not below zero at the point estimate (plausible_parameter with no allowance for the error). A
+// torque gain above one makes a joint look lighter, which a rotor inertia can mimic only by going
+// negative: a gain of 1.11 on the Kraft's base joint beside a viscous friction of it, the friction
+// not yet fitted, read ia1 -0.060 for a described 0.041, and where the joint moves that rotor
+// inertia left less than the gain in every fold (blind seed 281 case 54).
+bool may_lead_where_moving(const Candidate& c, const StepState& s) {
+  if (c.effect->family != "rotor_inertia") return true;
+  for (FittedParameter p : describe(c, s.before, s.accepted.cols(), s.gap.torque_rms).parameters) {
+    p.error = 0;
+    if (!plausible_parameter(p, s.derivation, s.gap)) return false;
+  }
+  return true;
+}
+
 // Of two per-joint effects that explain a step alike (as_good_as its leader) on a joint in common
 // and are compared where it moves (compared_where_moving), the one that leaves clearly less there
 // leads: less in every fold in which the joint moves (at least three), and by `ratio` over them.
@@ -1054,11 +1070,10 @@ bool compared_where_moving(const Effect& a, const Effect& b) {
 //   the gain also scales, the joint's Coriolis and friction torques, which act where it moves, and
 //   there the other kind left only 6-66 % more than the injected one, in every fold (blind seed 269
 //   cases 9 and 57: a Kraft tele-operation rotor inertia and gain of the base joint, each read as
-//   the other; seven more "A or B" with the injected one first). Not where a friction of the same
-//   joint is not yet fitted: where the joint moves that friction is what is left, and a rotor
-//   inertia left less of it than the injected gain in every fold (blind seed 281 case 54, a gain
-//   beside a viscous friction, was "rotor_inertia or torque_gain", now rotor_inertia alone; 1 of
-//   the 11 decisions seen in the twenty-fourth session).
+//   the other; seven more "A or B" with the injected one first). A rotor inertia that reads a
+//   negative inertia is not named so (may_lead_where_moving): where a friction of the joint is not
+//   yet fitted, that friction is what is left where the joint moves, and the rotor inertia standing
+//   in for a gain above one left less of it than the gain.
 template <typename Usable>
 const Candidate* closer_where_moving(const Candidate* pick, const Candidate& top,
                                      const std::vector<const Candidate*>& order, Usable usable, const StepState& s,
@@ -1093,20 +1108,25 @@ const Candidate* closer_where_moving(const Candidate* pick, const Candidate& top
       set_away_interval(moving, s.baseline, s.weight, s.away, joints, n);
       folds = moving.away_folds;
     }
-    if (folds.size() < 3) continue;
-    const std::vector<double> by_c = left_where_moving(*c, joints, folds, s);
-    const std::vector<double> by_pick = left_where_moving(*pick, joints, folds, s);
-    auto clearly_less = [&](const std::vector<double>& a, const std::vector<double>& b) {
-      for (std::size_t k = 0; k < a.size(); ++k) {
-        if (!(a[k] < b[k])) return false;
+    const bool pick_may_lead = may_lead_where_moving(*pick, s), c_may_lead = may_lead_where_moving(*c, s);
+    if (folds.size() >= 3) {
+      const std::vector<double> by_c = left_where_moving(*c, joints, folds, s);
+      const std::vector<double> by_pick = left_where_moving(*pick, joints, folds, s);
+      auto clearly_less = [&](const std::vector<double>& a, const std::vector<double>& b) {
+        for (std::size_t k = 0; k < a.size(); ++k) {
+          if (!(a[k] < b[k])) return false;
+        }
+        return std::accumulate(b.begin(), b.end(), 0.0) >= ratio * std::accumulate(a.begin(), a.end(), 0.0);
+      };
+      if (clearly_less(by_pick, by_c) && pick_may_lead) decided.emplace_back(pick->effect->family, c);
+      if (clearly_less(by_c, by_pick) && c_may_lead) {
+        decided.emplace_back(c->effect->family, pick);
+        return c;
       }
-      return std::accumulate(b.begin(), b.end(), 0.0) >= ratio * std::accumulate(a.begin(), a.end(), 0.0);
-    };
-    if (clearly_less(by_pick, by_c)) decided.emplace_back(pick->effect->family, c);
-    if (clearly_less(by_c, by_pick)) {
-      decided.emplace_back(c->effect->family, pick);
-      return c;
     }
+    // Not told apart: the one that reads a possible inertia is named first, the other as its
+    // alternative (281/54 is "torque_gain or rotor_inertia").
+    if (!pick_may_lead && c_may_lead) return c;
   }
   return pick;
 }
