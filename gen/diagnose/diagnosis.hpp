@@ -58,6 +58,9 @@ struct RankedEffect {
   std::optional<double> shrink_away_from_zero;
   // Selected only: the per-joint effects named beside it ("A or B"), each fitted in its place.
   std::vector<AlternativeFit> alternatives;
+  // Selected only: per-joint effects as good at its step on some of its joints only (name, 1-based
+  // joints), named beside it if the joint fit narrows it to those joints.
+  std::vector<std::pair<std::string, std::vector<int>>> alternatives_if_narrowed;
 };
 
 struct Verdict {
