@@ -32,6 +32,8 @@ constexpr double kStaticFrictionRatio = 1.0;
 // Standard errors (the folds' spread) by which a Stribeck friction's static excess must exceed
 // zero to be one (holds_an_excess).
 constexpr double kExcessErrors = 2.0;
+// Between the names of effects a log cannot tell apart ("A or B").
+constexpr std::string_view kOr = " or ";
 constexpr double kAcceptShrink = 0.05;  // an effect must remove 5 % of the weighted held-out error
 constexpr double kMaterial = 0.015;     // ... and explain at least 1.5 % of some joint's torque RMS
 constexpr double kJointShrink = 0.10;   // ... and 10 % on a joint to count as acting there
@@ -613,7 +615,7 @@ std::string alternatives(const Candidate& chosen, const Candidate& top, const st
     } else if (c->effect->columns.cols() > 2 * chosen.effect->columns.cols()) {
       continue;
     }
-    out += " or " + c->effect->name;
+    out += std::string(kOr) + c->effect->name;
     named.push_back(c);
   }
   return out;
@@ -1088,6 +1090,7 @@ const Candidate* closer_where_moving(const Candidate* pick, const Candidate& top
   constexpr double kCloserWhereMoving = 1.2;
   if (!per_joint(*pick->effect)) return pick;
   const Eigen::Index n = s.before.size();
+  const bool pick_may_lead = may_lead_where_moving(*pick, s);
   for (const Candidate* c : order) {
     if (c == pick || !usable(c) || !per_joint(*c->effect) || !as_good_as(*c, top) ||
         !compared_where_moving(*c->effect, *pick->effect)) {
@@ -1115,7 +1118,7 @@ const Candidate* closer_where_moving(const Candidate* pick, const Candidate& top
       set_away_interval(moving, s.baseline, s.weight, s.away, joints, n);
       folds = moving.away_folds;
     }
-    const bool pick_may_lead = may_lead_where_moving(*pick, s), c_may_lead = may_lead_where_moving(*c, s);
+    const bool c_may_lead = may_lead_where_moving(*c, s);
     if (folds.size() >= 3) {
       const std::vector<double> by_c = left_where_moving(*c, joints, folds, s);
       const std::vector<double> by_pick = left_where_moving(*pick, joints, folds, s);
@@ -1677,7 +1680,6 @@ std::map<std::string, Candidate> best_candidates(const ContactRows& contacts, co
 // reading for comparison, not a selected effect's full statement.
 void fit_alternatives_in_place(Diagnosis& out, const std::deque<Effect>& effects, const Eigen::VectorXd& r0,
                                const Eigen::VectorXd& weight, Eigen::Index n, const pipeline::Derivation& derivation) {
-  constexpr std::string_view kOr = " or ";
   std::optional<double> named_shrink;  // the selection's joint fit as named (once, where needed)
   Eigen::Index at = 0;
   for (std::size_t k = 0; k < out.selected.size(); ++k) {
@@ -1754,7 +1756,6 @@ bool acceptable(const Candidate* c) {
 // plausible) was read as a spring chosen on joints 1 and 2, which the joint fit narrowed to joint
 // 1: the verdict was the spring alone (`dyncc excite` seeds 903, 906 and 909).
 void name_alternatives_on_final_joints(Diagnosis& out) {
-  constexpr std::string_view kOr = " or ";
   for (RankedEffect& r : out.selected) {
     for (const auto& alternative : r.alternatives_if_narrowed) {
       const std::string& name = alternative.first;
