@@ -515,11 +515,16 @@ int run_sim2real_bench(const BenchOptions& o) {
       }
     }
     std::string detail;
+    // The goals this case misses, marked on its line: which logs to look at, without the tables.
+    std::vector<std::string> misses;
+    if (!right) misses.emplace_back(k.effects.empty() ? "false alarm" : "wrong");
     if (!k.effects.empty()) {
       const auto& main = k.effects.front();
       if (diagnose::acts_on_one_joint(main.effect)) {
+        const bool located = right && joints == std::vector<int>{main.joint + 1};
         count_in(&Score::locatable, true);
-        count_in(&Score::located, right && joints == std::vector<int>{main.joint + 1});
+        count_in(&Score::located, located);
+        if (right && !located) misses.emplace_back("joint");
       }
       if (right && !result["selected"].empty()) {
         const auto& sel = result["selected"][0];
@@ -532,6 +537,7 @@ int run_sim2real_bench(const BenchOptions& o) {
           const bool ok = within_goal(main.effect, fitted, target, k.rate);
           count_in(&Score::parameters, true);
           count_in(&Score::parameters_ok, ok);
+          if (!ok) misses.emplace_back("parameter");
           // Whether the stated uncertainty is honest: a miss of the goal within it is the noise of the
           // log, not a bias of the diagnosis. The 95 % interval as stated (null: unbounded on that
           // side; none stated: the value alone).
@@ -552,6 +558,7 @@ int run_sim2real_bench(const BenchOptions& o) {
         const double closure = before > 0 ? 1.0 - (after * after) / (before * before) : 0.0;
         count_in(&Score::closures, true);
         count_in(&Score::closure_ok, closure >= 0.8);
+        if (closure < 0.8) misses.emplace_back("closure");
         detail = fmt::format("{}, closure {:.0f} %", detail, 100 * closure);
       }
     }
@@ -563,7 +570,8 @@ int run_sim2real_bench(const BenchOptions& o) {
     rows += fmt::format("| {} | {} | {} | {:.0f} | {} | {} | {} | {} | {} |\n", c, k.arm, source, k.rate,
                         injected.empty() ? "none" : injected, bin, verdict, fmt::join(joints, ","), detail);
     fmt::print("case {:3d} {:8} {:17} {:5.0f} Hz  {:<48} -> {} [{}] {}\n", c, k.arm, source, k.rate,
-               injected.empty() ? "none" : injected, verdict, fmt::join(joints, ","), right ? "" : "(wrong)");
+               injected.empty() ? "none" : injected, verdict, fmt::join(joints, ","),
+               misses.empty() ? "" : fmt::format("({})", fmt::join(misses, ", ")));
     std::fflush(stdout);
   }
   const std::string tables = score_tables(by_size, by_effect, by_source);
