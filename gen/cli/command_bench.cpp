@@ -307,6 +307,83 @@ std::string score_tables(const std::map<std::string, Score>& by_size, const std:
   return fmt::format("{}\n{}\n{}\n{}", goals, table, effect_table, source_table);
 }
 
+// One case scored: counted into `scores` (its size's, its injected effect's and its source's
+// tallies); the fit as a line of the summary and the goals the case misses, for its line on the
+// terminal: which logs to look at, without the tables.
+struct CaseScore {
+  std::string detail;
+  std::vector<std::string> misses;
+};
+CaseScore score_case(const Case& k, const nlohmann::json& result, const std::vector<Score*>& scores) {
+  const std::string verdict = result["verdict"]["effect"];
+  const std::string first = verdict.substr(0, verdict.find(" or "));
+  const std::vector<int> joints = result["verdict"]["joints"].get<std::vector<int>>();
+  const std::string truth_name = k.effects.empty() ? std::string("none") : k.effects.front().effect;
+  auto count_in = [&](int Score::*field, bool yes) {
+    for (Score* x : scores) x->*field += yes ? 1 : 0;
+  };
+  count_in(&Score::cases, true);
+  const bool right = first == truth_name;
+  count_in(&Score::top1, right);
+  if (!right && !k.effects.empty() && verdict.find(" or " + truth_name) != std::string::npos) {
+    count_in(&Score::ties, true);
+    for (const double fitted : tie_fits(result, k.effects.front())) {
+      count_in(&Score::tie_fits, true);
+      count_in(&Score::tie_fits_ok,
+               within_goal(truth_name, fitted, measured_parameter(k.effects.front()).second, k.rate));
+    }
+  }
+  CaseScore out;
+  std::string& detail = out.detail;
+  std::vector<std::string>& misses = out.misses;
+  if (!right) misses.emplace_back(k.effects.empty() ? "false alarm" : "wrong");
+  if (!k.effects.empty()) {
+    const auto& main = k.effects.front();
+    if (diagnose::acts_on_one_joint(main.effect)) {
+      const bool located = right && joints == std::vector<int>{main.joint + 1};
+      count_in(&Score::locatable, true);
+      count_in(&Score::located, located);
+      if (right && !located) misses.emplace_back("joint");
+    }
+    if (right && !result["selected"].empty()) {
+      const auto& sel = result["selected"][0];
+      const auto [name, value] = measured_parameter(main);
+      for (const auto& p : sel["parameters"]) {
+        if (name.empty() || p["name"] != name) continue;
+        const double fitted = p["value"];
+        const double error = p["error"];
+        const double target = value;
+        const bool ok = within_goal(main.effect, fitted, target, k.rate);
+        count_in(&Score::parameters, true);
+        count_in(&Score::parameters_ok, ok);
+        if (!ok) misses.emplace_back("parameter");
+        // Whether the stated uncertainty is honest: a miss of the goal within it is the noise of the
+        // log, not a bias of the diagnosis. The 95 % interval as stated (null: unbounded on that
+        // side; none stated: the value alone).
+        constexpr double kUnbounded = std::numeric_limits<double>::infinity();
+        double low = fitted, high = fitted;
+        if (p.contains("interval95")) {
+          const auto& interval = p["interval95"];
+          low = interval[0].is_null() ? -kUnbounded : interval[0].get<double>();
+          high = interval[1].is_null() ? kUnbounded : interval[1].get<double>();
+        }
+        count_in(&Score::covered, low <= target && target <= high);
+        detail =
+            fmt::format("{} = {:.4g} +- {:.2g} [{:.4g}, {:.4g}] (true {:.4g})", name, fitted, error, low, high, target);
+      }
+      // Gap closure on the effect's joint: the share of the held-out gap that is gone.
+      const auto j = static_cast<std::size_t>(main.joint);
+      const double before = result["gap"]["heldout_rms"][j], after = result["gap"]["heldout_rms_after_selected"][j];
+      const double closure = before > 0 ? 1.0 - (after * after) / (before * before) : 0.0;
+      count_in(&Score::closures, true);
+      count_in(&Score::closure_ok, closure >= 0.8);
+      if (closure < 0.8) misses.emplace_back("closure");
+      detail = fmt::format("{}, closure {:.0f} %", detail, 100 * closure);
+    }
+  }
+  return out;
+}
+
 }  // namespace
 
 // A case's hidden effects: `count` of them from `pool`, the first `fraction` of the torque RMS on
@@ -493,75 +570,13 @@ int run_sim2real_bench(const BenchOptions& o) {
     std::ifstream in(dir / "diagnosis.json");
     const nlohmann::json result = nlohmann::json::parse(in);
     const std::string verdict = result["verdict"]["effect"];
-    const std::string first = verdict.substr(0, verdict.find(" or "));
     const std::vector<int> joints = result["verdict"]["joints"].get<std::vector<int>>();
-
     const std::string bin = k.effects.empty() ? std::string("none") : fmt::format("{:.0f} %", 100 * k.fraction);
     const std::string truth_name = k.effects.empty() ? std::string("none") : k.effects.front().effect;
     const std::string source = k.plant == "model" ? std::string("open loop (model)") : k.plant + " " + k.trajectory;
-    const std::vector<Score*> scores = {&by_size[bin], &by_effect[truth_name], &by_source[source]};
-    auto count_in = [&](int Score::*field, bool yes) {
-      for (Score* x : scores) x->*field += yes ? 1 : 0;
-    };
-    count_in(&Score::cases, true);
-    const bool right = first == truth_name;
-    count_in(&Score::top1, right);
-    if (!right && !k.effects.empty() && verdict.find(" or " + truth_name) != std::string::npos) {
-      count_in(&Score::ties, true);
-      for (const double fitted : tie_fits(result, k.effects.front())) {
-        count_in(&Score::tie_fits, true);
-        count_in(&Score::tie_fits_ok,
-                 within_goal(truth_name, fitted, measured_parameter(k.effects.front()).second, k.rate));
-      }
-    }
-    std::string detail;
-    // The goals this case misses, marked on its line: which logs to look at, without the tables.
-    std::vector<std::string> misses;
-    if (!right) misses.emplace_back(k.effects.empty() ? "false alarm" : "wrong");
-    if (!k.effects.empty()) {
-      const auto& main = k.effects.front();
-      if (diagnose::acts_on_one_joint(main.effect)) {
-        const bool located = right && joints == std::vector<int>{main.joint + 1};
-        count_in(&Score::locatable, true);
-        count_in(&Score::located, located);
-        if (right && !located) misses.emplace_back("joint");
-      }
-      if (right && !result["selected"].empty()) {
-        const auto& sel = result["selected"][0];
-        const auto [name, value] = measured_parameter(main);
-        for (const auto& p : sel["parameters"]) {
-          if (name.empty() || p["name"] != name) continue;
-          const double fitted = p["value"];
-          const double error = p["error"];
-          const double target = value;
-          const bool ok = within_goal(main.effect, fitted, target, k.rate);
-          count_in(&Score::parameters, true);
-          count_in(&Score::parameters_ok, ok);
-          if (!ok) misses.emplace_back("parameter");
-          // Whether the stated uncertainty is honest: a miss of the goal within it is the noise of the
-          // log, not a bias of the diagnosis. The 95 % interval as stated (null: unbounded on that
-          // side; none stated: the value alone).
-          constexpr double kUnbounded = std::numeric_limits<double>::infinity();
-          double low = fitted, high = fitted;
-          if (p.contains("interval95")) {
-            const auto& interval = p["interval95"];
-            low = interval[0].is_null() ? -kUnbounded : interval[0].get<double>();
-            high = interval[1].is_null() ? kUnbounded : interval[1].get<double>();
-          }
-          count_in(&Score::covered, low <= target && target <= high);
-          detail = fmt::format("{} = {:.4g} +- {:.2g} [{:.4g}, {:.4g}] (true {:.4g})", name, fitted, error, low, high,
-                               target);
-        }
-        // Gap closure on the effect's joint: the share of the held-out gap that is gone.
-        const auto j = static_cast<std::size_t>(main.joint);
-        const double before = result["gap"]["heldout_rms"][j], after = result["gap"]["heldout_rms_after_selected"][j];
-        const double closure = before > 0 ? 1.0 - (after * after) / (before * before) : 0.0;
-        count_in(&Score::closures, true);
-        count_in(&Score::closure_ok, closure >= 0.8);
-        if (closure < 0.8) misses.emplace_back("closure");
-        detail = fmt::format("{}, closure {:.0f} %", detail, 100 * closure);
-      }
-    }
+    const CaseScore scored = score_case(k, result, {&by_size[bin], &by_effect[truth_name], &by_source[source]});
+    const std::string& detail = scored.detail;
+    const std::vector<std::string>& misses = scored.misses;
     std::string injected;
     for (const auto& e : k.effects) {
       injected =
