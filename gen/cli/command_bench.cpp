@@ -334,16 +334,14 @@ CaseScore score_case(const Case& k, const nlohmann::json& result, const std::vec
     }
   }
   CaseScore out;
-  std::string& detail = out.detail;
-  std::vector<std::string>& misses = out.misses;
-  if (!right) misses.emplace_back(k.effects.empty() ? "false alarm" : "wrong");
+  if (!right) out.misses.emplace_back(k.effects.empty() ? "false alarm" : "wrong");
   if (!k.effects.empty()) {
     const auto& main = k.effects.front();
     if (diagnose::acts_on_one_joint(main.effect)) {
       const bool located = right && joints == std::vector<int>{main.joint + 1};
       count_in(&Score::locatable, true);
       count_in(&Score::located, located);
-      if (right && !located) misses.emplace_back("joint");
+      if (right && !located) out.misses.emplace_back("joint");
     }
     if (right && !result["selected"].empty()) {
       const auto& sel = result["selected"][0];
@@ -356,7 +354,7 @@ CaseScore score_case(const Case& k, const nlohmann::json& result, const std::vec
         const bool ok = within_goal(main.effect, fitted, target, k.rate);
         count_in(&Score::parameters, true);
         count_in(&Score::parameters_ok, ok);
-        if (!ok) misses.emplace_back("parameter");
+        if (!ok) out.misses.emplace_back("parameter");
         // Whether the stated uncertainty is honest: a miss of the goal within it is the noise of the
         // log, not a bias of the diagnosis. The 95 % interval as stated (null: unbounded on that
         // side; none stated: the value alone).
@@ -368,7 +366,7 @@ CaseScore score_case(const Case& k, const nlohmann::json& result, const std::vec
           high = interval[1].is_null() ? kUnbounded : interval[1].get<double>();
         }
         count_in(&Score::covered, low <= target && target <= high);
-        detail =
+        out.detail =
             fmt::format("{} = {:.4g} +- {:.2g} [{:.4g}, {:.4g}] (true {:.4g})", name, fitted, error, low, high, target);
       }
       // Gap closure on the effect's joint: the share of the held-out gap that is gone.
@@ -377,8 +375,8 @@ CaseScore score_case(const Case& k, const nlohmann::json& result, const std::vec
       const double closure = before > 0 ? 1.0 - (after * after) / (before * before) : 0.0;
       count_in(&Score::closures, true);
       count_in(&Score::closure_ok, closure >= 0.8);
-      if (closure < 0.8) misses.emplace_back("closure");
-      detail = fmt::format("{}, closure {:.0f} %", detail, 100 * closure);
+      if (closure < 0.8) out.misses.emplace_back("closure");
+      out.detail = fmt::format("{}, closure {:.0f} %", out.detail, 100 * closure);
     }
   }
   return out;
@@ -575,18 +573,16 @@ int run_sim2real_bench(const BenchOptions& o) {
     const std::string truth_name = k.effects.empty() ? std::string("none") : k.effects.front().effect;
     const std::string source = k.plant == "model" ? std::string("open loop (model)") : k.plant + " " + k.trajectory;
     const CaseScore scored = score_case(k, result, {&by_size[bin], &by_effect[truth_name], &by_source[source]});
-    const std::string& detail = scored.detail;
-    const std::vector<std::string>& misses = scored.misses;
     std::string injected;
     for (const auto& e : k.effects) {
       injected =
           fmt::format("{}{}{}@{} {:.3g}", injected, injected.empty() ? "" : " + ", e.effect, e.joint + 1, e.size);
     }
     rows += fmt::format("| {} | {} | {} | {:.0f} | {} | {} | {} | {} | {} |\n", c, k.arm, source, k.rate,
-                        injected.empty() ? "none" : injected, bin, verdict, fmt::join(joints, ","), detail);
+                        injected.empty() ? "none" : injected, bin, verdict, fmt::join(joints, ","), scored.detail);
     fmt::print("case {:3d} {:8} {:17} {:5.0f} Hz  {:<48} -> {} [{}] {}\n", c, k.arm, source, k.rate,
                injected.empty() ? "none" : injected, verdict, fmt::join(joints, ","),
-               misses.empty() ? "" : fmt::format("({})", fmt::join(misses, ", ")));
+               scored.misses.empty() ? "" : fmt::format("({})", fmt::join(scored.misses, ", ")));
     std::fflush(stdout);
   }
   const std::string tables = score_tables(by_size, by_effect, by_source);
