@@ -3,18 +3,13 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <numbers>
 #include <random>
 
 namespace dyncc::sim {
-namespace {
-
-constexpr double kPi = 3.14159265358979323846;
-
-}  // namespace
-
 FourierExcitation::FourierExcitation(unsigned seed, double scale) : scale_(scale) {
   std::mt19937 random(seed);
-  std::uniform_real_distribution<double> phase(0.0, 2 * kPi), size(0.5, 1.0);
+  std::uniform_real_distribution<double> phase(0.0, 2 * std::numbers::pi), size(0.5, 1.0);
   for (int j = 0; j < kDof; ++j) {
     // Amplitudes falling with the harmonic (so accelerations stay moderate), then scaled so their
     // sum is the joint's reach: the excursion can never leave the range. The joints' base
@@ -25,7 +20,7 @@ FourierExcitation::FourierExcitation(unsigned seed, double scale) : scale_(scale
       a[k] = size(random) / (k + 1);
       sum += a[k];
     }
-    const double omega = 2 * kPi * kBaseFrequency * (1.0 + 0.07 * j);
+    const double omega = 2 * std::numbers::pi * kBaseFrequency * (1.0 + 0.07 * j);
     for (int k = 0; k < kHarmonics; ++k) waves_.push_back({kReach[j] * a[k] / sum, omega * (k + 1), phase(random)});
   }
 }

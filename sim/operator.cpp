@@ -5,13 +5,12 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <numbers>
 #include <sstream>
 #include <stdexcept>
 
 namespace dyncc::sim {
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 // Poses of the task (rad). Hook heights (base frame, z up, hook 0.40 m along the forearm):
 // home -0.14 m, above the payload -0.33 m, the payload's top (the contact plane) at -0.34 m,
@@ -66,7 +65,7 @@ TrajectoryPoint TaskScript::at(double t) const {
   out.q = seg->from;
   if (seg->sweep_joint >= 0) {
     // a sin^3(w tau): starts and ends at rest with zero acceleration.
-    const double w = 2 * kPi / seg->period, s = std::sin(w * tau), c = std::cos(w * tau);
+    const double w = 2 * std::numbers::pi / seg->period, s = std::sin(w * tau), c = std::cos(w * tau);
     const auto k = static_cast<std::size_t>(seg->sweep_joint);
     out.q[k] += seg->amplitude * s * s * s;
     out.qd[k] = seg->amplitude * 3 * s * s * c * w;

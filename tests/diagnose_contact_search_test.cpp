@@ -17,8 +17,6 @@
 namespace dyncc::test {
 namespace {
 
-const pipeline::Derivation& kraft() { return kraft_derivation(); }
-
 // A Kraft log at 1 kHz, its forearm swinging slowly, with one 30 ms dip of 10 mrad at 10 s (a
 // hook pressed into a table and bouncing off), positions on 0.1 mrad steps.
 constexpr double kDipAt = 10.0, kDipLength = 0.03, kDipDepth = 0.01;
@@ -57,7 +55,7 @@ double seen_depth(const diagnose::Dataset& d, const Eigen::MatrixXd& q) {
 
 // Low-passed at 4 Hz the dip is nearly gone; only anti-aliased (for rows at 100 Hz) it stays.
 TEST(ContactRows, GatePositionsKeepATouchShorterThanTheFilterPeriod) {
-  const diagnose::Dataset d = diagnose::build_dataset({dipping_log()}, kraft());
+  const diagnose::Dataset d = diagnose::build_dataset({dipping_log()}, kraft_derivation());
   EXPECT_GT(seen_depth(d, d.q_sharp), 0.6 * kDipDepth);
   EXPECT_LT(seen_depth(d, d.q), 0.25 * kDipDepth);
 }
@@ -70,9 +68,9 @@ TEST(ContactSearch, ClimbsBeyondTheGridAndKeepsTheBestPlausiblePoint) {
   diagnose::SyntheticOptions options;
   options.duration = 10;
   const auto path = temp_path("contact_search.csv");
-  diagnose::write_synthetic_log(kraft(), {}, options, path);
-  const diagnose::Dataset d = diagnose::build_dataset({diagnose::read_joint_log(path.string(), 3)}, kraft());
-  const diagnose::ContactRows rows(d, kraft());
+  diagnose::write_synthetic_log(kraft_derivation(), {}, options, path);
+  const diagnose::Dataset d = diagnose::build_dataset({diagnose::read_joint_log(path.string(), 3)}, kraft_derivation());
+  const diagnose::ContactRows rows(d, kraft_derivation());
   ASSERT_TRUE(rows.valid());
   const double scale = rows.scale(), x0 = 3.2 * scale, z0 = -0.3 * scale, q0 = 0.004;
   const diagnose::ContactJudge judge = [&](const diagnose::Effect& e) {

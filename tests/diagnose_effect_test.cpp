@@ -22,8 +22,6 @@ namespace {
 
 using diagnose::Injection;
 
-const pipeline::Derivation& kraft() { return kraft_derivation(); }
-
 struct Case {
   Injection injection;
   std::string parameter;  // the fitted parameter to compare with the injected size ("" = none)
@@ -37,10 +35,10 @@ void PrintTo(const Case& c, std::ostream* out) {
 
 diagnose::Diagnosis run(const Injection& inject, const diagnose::SyntheticOptions& s, std::string* text = nullptr) {
   const auto path = temp_path(inject.effect + ".csv");
-  diagnose::write_synthetic_log(kraft(), {inject}, s, path);
+  diagnose::write_synthetic_log(kraft_derivation(), {inject}, s, path);
   const auto log = diagnose::read_joint_log(path.string(), 3);
-  const diagnose::Dataset data = diagnose::build_dataset({log}, kraft());
-  diagnose::Diagnosis d = diagnose::diagnose(data, kraft());
+  const diagnose::Dataset data = diagnose::build_dataset({log}, kraft_derivation());
+  diagnose::Diagnosis d = diagnose::diagnose(data, kraft_derivation());
   if (text != nullptr) *text = diagnose::diagnosis_text(data, d);
   return d;
 }
@@ -83,9 +81,10 @@ TEST(InjectedEffects, TwoEffectsAreEachPlacedOnTheirOwnJoint) {
   const Injection coulomb{.effect = "coulomb_friction", .joint = 0, .size = 0.1};
   const Injection viscous{.effect = "viscous_friction", .joint = 2, .size = 0.4};
   const auto path = temp_path("two_effects.csv");
-  diagnose::write_synthetic_log(kraft(), {coulomb, viscous}, diagnose::SyntheticOptions{}, path);
-  const diagnose::Dataset data = diagnose::build_dataset({diagnose::read_joint_log(path.string(), 3)}, kraft());
-  const diagnose::Diagnosis d = diagnose::diagnose(data, kraft());
+  diagnose::write_synthetic_log(kraft_derivation(), {coulomb, viscous}, diagnose::SyntheticOptions{}, path);
+  const diagnose::Dataset data =
+      diagnose::build_dataset({diagnose::read_joint_log(path.string(), 3)}, kraft_derivation());
+  const diagnose::Diagnosis d = diagnose::diagnose(data, kraft_derivation());
   SCOPED_TRACE(diagnose::diagnosis_text(data, d));
   ASSERT_GE(d.selected.size(), 2U);
   std::map<std::string, const diagnose::RankedEffect*> by_name;
@@ -112,9 +111,10 @@ TEST(InjectedEffects, FrictionBesideAGainOfItsJointIsReadInAppliedTorque) {
   const Injection viscous{.effect = "viscous_friction", .joint = 0, .size = 0.4};
   const Injection gain{.effect = "torque_gain", .joint = 0, .size = 1.2};
   const auto path = temp_path("gain_friction.csv");
-  diagnose::write_synthetic_log(kraft(), {viscous, gain}, diagnose::SyntheticOptions{}, path);
-  const diagnose::Dataset data = diagnose::build_dataset({diagnose::read_joint_log(path.string(), 3)}, kraft());
-  const diagnose::Diagnosis d = diagnose::diagnose(data, kraft());
+  diagnose::write_synthetic_log(kraft_derivation(), {viscous, gain}, diagnose::SyntheticOptions{}, path);
+  const diagnose::Dataset data =
+      diagnose::build_dataset({diagnose::read_joint_log(path.string(), 3)}, kraft_derivation());
+  const diagnose::Diagnosis d = diagnose::diagnose(data, kraft_derivation());
   SCOPED_TRACE(diagnose::diagnosis_text(data, d));
   std::map<std::string, double> fitted;
   for (const auto& r : d.selected) {
@@ -134,9 +134,10 @@ TEST(InjectedEffects, TwoSmallEffectsAreNamedRatherThanTheInertialParameters) {
   const auto path = temp_path("rotor_payload.csv");
   diagnose::SyntheticOptions options;
   options.rate = 81;
-  diagnose::write_synthetic_log(kraft(), {rotor, payload}, options, path);
-  const diagnose::Dataset data = diagnose::build_dataset({diagnose::read_joint_log(path.string(), 3)}, kraft());
-  const diagnose::Diagnosis d = diagnose::diagnose(data, kraft());
+  diagnose::write_synthetic_log(kraft_derivation(), {rotor, payload}, options, path);
+  const diagnose::Dataset data =
+      diagnose::build_dataset({diagnose::read_joint_log(path.string(), 3)}, kraft_derivation());
+  const diagnose::Diagnosis d = diagnose::diagnose(data, kraft_derivation());
   SCOPED_TRACE(diagnose::diagnosis_text(data, d));
   std::map<std::string, std::map<std::string, double>> by_name;
   for (const auto& r : d.selected) {
@@ -184,15 +185,15 @@ TEST(NoiseFloor, PositionsNoiseFloorIsWhatTheirNoiseAddsToTheResidual) {
   diagnose::SyntheticOptions options;
   options.rate = 200;
   const auto path = temp_path("noise_floor.csv");
-  diagnose::write_synthetic_log(kraft(), {}, options, path);
+  diagnose::write_synthetic_log(kraft_derivation(), {}, options, path);
   diagnose::JointLog log = diagnose::read_joint_log(path.string(), 3);
-  const diagnose::Dataset clean = diagnose::build_dataset({log}, kraft());
+  const diagnose::Dataset clean = diagnose::build_dataset({log}, kraft_derivation());
   std::mt19937 random(11);
   std::normal_distribution<double> noise(0.0, 1e-3);
   for (Eigen::Index s = 0; s < log.samples(); ++s) {
     for (Eigen::Index j = 0; j < 3; ++j) log.q(s, j) += noise(random);
   }
-  const diagnose::Dataset noisy = diagnose::build_dataset({log}, kraft());
+  const diagnose::Dataset noisy = diagnose::build_dataset({log}, kraft_derivation());
   auto rms = [](const Eigen::VectorXd& stacked, Eigen::Index j) {
     double sum = 0;
     for (Eigen::Index r = j; r < stacked.size(); r += 3) sum += stacked[r] * stacked[r];
@@ -223,7 +224,7 @@ auto central_difference(F f, const Eigen::VectorXd& q, Eigen::Index j) {
 // differences of the point's position (origin + R c), and its vertical part against the lever read
 // off the energy: two derivations of the same geometry agree.
 TEST(ContactGeometry, PointJacobianIsTheGradientOfThePointAndAgreesWithTheLever) {
-  const diagnose::ContactGeometry geometry(kraft());
+  const diagnose::ContactGeometry geometry(kraft_derivation());
   ASSERT_TRUE(geometry.valid());
   std::mt19937 random(5);
   std::uniform_real_distribution<double> angle(-1.5, 1.5), coordinate(-0.5, 0.5);
@@ -248,7 +249,7 @@ TEST(ContactGeometry, PointJacobianIsTheGradientOfThePointAndAgreesWithTheLever)
 // force on a point (read from the regressor's gravity columns) is minus the gradient of the
 // point's height (read from the potential energy), at random configurations and points.
 TEST(ContactGeometry, LeverIsMinusTheGradientOfTheHeight) {
-  const diagnose::ContactGeometry geometry(kraft());
+  const diagnose::ContactGeometry geometry(kraft_derivation());
   ASSERT_TRUE(geometry.valid());
   std::mt19937 random(3);
   std::uniform_real_distribution<double> angle(-1.5, 1.5), coordinate(-0.5, 0.5);

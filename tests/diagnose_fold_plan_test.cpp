@@ -18,7 +18,7 @@ namespace dyncc::test {
 namespace {
 
 constexpr Eigen::Index kJoints = 2, kSamples = 2000;
-constexpr double kStep = 0.03;  // s between rows: 60 s
+constexpr double kRowStep = 0.03;  // s between rows: 60 s
 
 struct Bump {
   Eigen::Index center;
@@ -42,7 +42,7 @@ Eigen::VectorXd residual_with(const std::vector<Bump>& bumps, double smooth = 0.
 }
 
 diagnose::Folds plan(const Eigen::VectorXd& r) {
-  return diagnose::folds_sharing_bursts(r, Eigen::VectorXd::Ones(kJoints), kJoints, kStep);
+  return diagnose::folds_sharing_bursts(r, Eigen::VectorXd::Ones(kJoints), kJoints, kRowStep);
 }
 
 // The share of the bumps' squared height (over their rows) in each block.
@@ -90,7 +90,7 @@ TEST(FoldPlan, BurstsBesideALargerSmoothEffectKeepEvenBlocks) {
 TEST(FoldPlan, AStretchLongerThanATouchKeepsEvenBlocks) {
   Eigen::VectorXd r = residual_with({});
   for (Eigen::Index s = 900; s < 1200; ++s) r[s * kJoints + 1] += 60.0;  // 9 s at 0.03 s
-  ASSERT_GT(300 * kStep, diagnose::kLongestBurst);
+  ASSERT_GT(300 * kRowStep, diagnose::kLongestBurst);
   EXPECT_EQ(plan(r), diagnose::Folds::even(kSamples));
 }
 
@@ -102,7 +102,7 @@ TEST(FoldPlan, TwoTouchesInOneBlockArePartedBetweenThem) {
   const std::vector<double> share = bump_shares(folds, bumps);
   EXPECT_NEAR(*std::max_element(share.begin(), share.end()), 0.5, 1e-6);
   // The edge between them is at least the margin (1 s) from each.
-  const auto margin = static_cast<Eigen::Index>(diagnose::kBurstMargin / kStep);
+  const auto margin = static_cast<Eigen::Index>(diagnose::kBurstMargin / kRowStep);
   for (int f = 1; f < diagnose::kFolds; ++f) {
     for (const Bump& b : bumps) EXPECT_GT(std::abs(folds.begin_of(f) - b.center), margin) << "edge " << f;
   }

@@ -12,8 +12,6 @@
 namespace dyncc::test {
 namespace {
 
-const pipeline::Derivation& kraft() { return kraft_derivation(); }
-
 // A log's gap as the rules read it: 1 N m of torque RMS and 1 mrad of position resolution on each
 // of the Kraft's three joints.
 diagnose::Gap gap() {
@@ -24,12 +22,12 @@ diagnose::Gap gap() {
 }
 
 bool plausible(const std::string& name, double value, double error = 0.0) {
-  return diagnose::plausible_parameter({name, value, error}, kraft(), gap());
+  return diagnose::plausible_parameter({name, value, error}, kraft_derivation(), gap());
 }
 
 TEST(Plausibility, AFrictionCorrectionIsJudgedWithTheDescriptionsFriction) {
-  const Eigen::VectorXd nominal = kraft().numeric->nominal_standard_values();
-  const int index = kraft().model.params.coulomb_of[0];
+  const Eigen::VectorXd nominal = kraft_derivation().numeric->nominal_standard_values();
+  const int index = kraft_derivation().model.params.coulomb_of[0];
   ASSERT_GE(index, 0);
   const double described = nominal[index];
   ASSERT_GT(described, 0.0);
@@ -65,13 +63,13 @@ TEST(Plausibility, ADriveOffByMoreThanAFactorOfTwoIsAWrongDescriptionNotAGain) {
 TEST(Plausibility, ALoadsPointIsOnItsLink) {
   diagnose::RankedEffect near;
   near.parameters = {{"mass", 0.1, 0.01}, {"point_x", 0.3, 0.01}, {"point_y", 0.0, 0.01}};
-  EXPECT_TRUE(diagnose::plausible(near, kraft(), gap()));
+  EXPECT_TRUE(diagnose::plausible(near, kraft_derivation(), gap()));
   diagnose::RankedEffect far = near;
   far.parameters[1].value = 3.0;
-  EXPECT_FALSE(diagnose::plausible(far, kraft(), gap()));
+  EXPECT_FALSE(diagnose::plausible(far, kraft_derivation(), gap()));
   diagnose::RankedEffect negative = near;
   negative.parameters[0].value = -0.1;
-  EXPECT_FALSE(diagnose::plausible(negative, kraft(), gap()));
+  EXPECT_FALSE(diagnose::plausible(negative, kraft_derivation(), gap()));
 }
 
 // A held contact (its push alone, at the gate's point) pushes beyond twice its error.
@@ -79,12 +77,12 @@ TEST(Plausibility, AHeldContactPushes) {
   diagnose::RankedEffect held;
   held.family = "contact";
   held.parameters = {{"force", 0.3, 0.03}, {"point_x", 0.4, 0.0}, {"point_y", 0.0, 0.0}, {"point_z", 0.0, 0.0}};
-  EXPECT_TRUE(diagnose::plausible(held, kraft(), gap()));
+  EXPECT_TRUE(diagnose::plausible(held, kraft_derivation(), gap()));
   held.parameters[0] = {"force", 0.05, 0.03};
-  EXPECT_FALSE(diagnose::plausible(held, kraft(), gap())) << "a push within twice its error of zero";
+  EXPECT_FALSE(diagnose::plausible(held, kraft_derivation(), gap())) << "a push within twice its error of zero";
   diagnose::RankedEffect pressed = held;  // with moments, a pressed contact only may not pull
   pressed.parameters.push_back({"moment_x", 0.02, 0.01});
-  EXPECT_TRUE(diagnose::plausible(pressed, kraft(), gap()));
+  EXPECT_TRUE(diagnose::plausible(pressed, kraft_derivation(), gap()));
 }
 
 }  // namespace

@@ -34,13 +34,11 @@ namespace {
 
 using diagnose::Injection;
 
-const pipeline::Derivation& kraft() { return kraft_derivation(); }
-
 std::filesystem::path temp_file(const std::string& name) { return temp_path(name + ".csv"); }
 
 diagnose::JointLog synthetic_log(const std::vector<Injection>& effects, const std::string& name) {
   const auto path = temp_file(name);
-  diagnose::write_synthetic_log(kraft(), effects, diagnose::SyntheticOptions{}, path);
+  diagnose::write_synthetic_log(kraft_derivation(), effects, diagnose::SyntheticOptions{}, path);
   diagnose::JointLog log = diagnose::read_joint_log(path.string(), 3);
   std::filesystem::remove(path);
   return log;
@@ -62,8 +60,8 @@ struct Diagnosed {
 
 Diagnosed diagnosed(const diagnose::JointLog& log) {
   Diagnosed out;
-  out.data = diagnose::build_dataset({log}, kraft());
-  out.diagnosis = diagnose::diagnose(out.data, kraft());
+  out.data = diagnose::build_dataset({log}, kraft_derivation());
+  out.diagnosis = diagnose::diagnose(out.data, kraft_derivation());
   out.residuals = diagnose::selected_residuals(out.data, out.diagnosis);
   return out;
 }
@@ -150,7 +148,7 @@ TEST(DiagnoseReport, SensorDelayIsTheLagOfTheTorqueCorrelation) {
     const std::vector<Injection> effects =
         delay > 0 ? std::vector<Injection>{injection("sensor_delay", 0, delay)} : std::vector<Injection>{};
     const diagnose::Dataset data =
-        diagnose::build_dataset({synthetic_log(effects, delay > 0 ? "delay" : "clean")}, kraft());
+        diagnose::build_dataset({synthetic_log(effects, delay > 0 ? "delay" : "clean")}, kraft_derivation());
     const plot::Figure f = diagnose::correlation_figure(data);
     ASSERT_EQ(f.panels.size(), 3U);
     for (std::size_t j = 0; j < 3; ++j) {
@@ -329,7 +327,8 @@ TEST(DiagnoseReport, DisturbanceStandsOutInTheSpectrumAndItsWindowIsShaded) {
 
 TEST(DiagnoseReport, CommandWritesAPageWhoseFiguresAreBesideIt) {
   const auto log = output_path("log.csv");
-  diagnose::write_synthetic_log(kraft(), {injection("coulomb_friction", 1, 0.15)}, diagnose::SyntheticOptions{}, log);
+  diagnose::write_synthetic_log(kraft_derivation(), {injection("coulomb_friction", 1, 0.15)},
+                                diagnose::SyntheticOptions{}, log);
   const auto out = output_path("report");
   std::filesystem::remove_all(out);
   const DynccRun run =

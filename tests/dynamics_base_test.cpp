@@ -13,7 +13,7 @@
 namespace dyncc::test {
 namespace {
 
-constexpr int kSamples = 30;
+constexpr int kBaseSamples = 30;
 
 // Rank of a stacked regressor with its columns scaled to unit norm (rank does not change, and
 // Eigen's relative threshold is then not fooled by columns of very different magnitude).
@@ -52,9 +52,9 @@ TEST_P(ShippedRobotBase, BaseRegressorReproducesFullRegressorAndHasFullColumnRan
   const Eigen::VectorXd nominal = d->numeric->nominal_standard_values();
 
   std::mt19937_64 rng(4242);
-  Eigen::MatrixXd W(kSamples * n, p), WB(kSamples * n, r);
+  Eigen::MatrixXd W(kBaseSamples * n, p), WB(kBaseSamples * n, r);
   double worst_matrix = 0.0, worst_nominal = 0.0;
-  for (int k = 0; k < kSamples; ++k) {
+  for (int k = 0; k < kBaseSamples; ++k) {
     const dyn::State s = random_state(n, rng);
     const Eigen::MatrixXd Y = d->numeric->regressor(s);
     const Eigen::MatrixXd Yb = base::base_regressor(d->base, Y);

@@ -58,12 +58,12 @@ std::vector<int> dof_of_links(const robot::RobotDescription& robot, const mjMode
   return dofs;
 }
 
-struct Worst {
+struct MujocoWorst {
   double H = 0, g = 0, coriolis = 0, constraint = 0, admissible_motion = 0;
 };
 
-Worst check_in_mujoco(const std::filesystem::path& description, const std::string& label) {
-  Worst w;
+MujocoWorst check_in_mujoco(const std::filesystem::path& description, const std::string& label) {
+  MujocoWorst w;
   const auto d = derive_file(description);
   if (!d) return w;
   const std::filesystem::path xml = output_path(label + ".xml");
@@ -124,34 +124,34 @@ Worst check_in_mujoco(const std::filesystem::path& description, const std::strin
   return w;
 }
 
-void check_shipped(const std::string& file) {
-  const Worst w = check_in_mujoco(robots_dir() / file, file);
+void check_shipped_mjcf(const std::string& file) {
+  const MujocoWorst w = check_in_mujoco(robots_dir() / file, file);
   ::testing::Test::RecordProperty("max_relative_error_H", scientific(w.H));
   ::testing::Test::RecordProperty("max_relative_error_g", scientific(w.g));
   std::cout << file << ": max relative error vs MuJoCo  H " << scientific(w.H) << "  g " << scientific(w.g) << "  C qd "
             << scientific(w.coriolis) << "  constraint residual " << scientific(w.constraint) << "\n";
 }
 
-TEST(ExportMjcf, KraftClosedChainMatchesMuJoCo) { check_shipped("kraft.yaml"); }
+TEST(ExportMjcf, KraftClosedChainMatchesMuJoCo) { check_shipped_mjcf("kraft.yaml"); }
 
-TEST(ExportMjcf, Puma560MatchesMuJoCo) { check_shipped("puma560.yaml"); }
+TEST(ExportMjcf, Puma560MatchesMuJoCo) { check_shipped_mjcf("puma560.yaml"); }
 
-TEST(ExportMjcf, PandaMatchesMuJoCo) { check_shipped("panda.yaml"); }
+TEST(ExportMjcf, PandaMatchesMuJoCo) { check_shipped_mjcf("panda.yaml"); }
 
-TEST(ExportMjcf, PlanarArmMatchesMuJoCo) { check_shipped("planar_2link.yaml"); }
+TEST(ExportMjcf, PlanarArmMatchesMuJoCo) { check_shipped_mjcf("planar_2link.yaml"); }
 
 // Random descriptions (export_random_robot.hpp): prismatic joints, branches, scaled and coupled
 // joints, welded links, a massless link and thin rods that MuJoCo only takes after the export's
 // repairs, rotors, friction, limits, gravity in any direction.
 TEST(ExportMjcf, RandomDescriptionsMatchMuJoCo) {
   std::mt19937_64 rng(4242);
-  Worst largest;
+  MujocoWorst largest;
   for (int r = 0; r < 12; ++r) {
     const std::string label = cat({"random", std::to_string(r)});
     const std::string text = random_export_robot(rng, r);
     const std::filesystem::path yaml = output_path(label + ".yaml");
     std::ofstream(yaml) << text;
-    const Worst w = check_in_mujoco(yaml, label);
+    const MujocoWorst w = check_in_mujoco(yaml, label);
     largest.H = std::max(largest.H, w.H);
     largest.g = std::max(largest.g, w.g);
     if (::testing::Test::HasFailure()) {

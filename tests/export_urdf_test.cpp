@@ -24,7 +24,7 @@
 namespace dyncc::test {
 namespace {
 
-constexpr double kTolerance = 1e-8;  // relative
+constexpr double kUrdfTolerance = 1e-8;  // relative
 
 struct UrdfLink {
   std::string name;
@@ -219,12 +219,12 @@ bench::RigidBodyTree tree_from_urdf(const Urdf& urdf, const robot::RobotDescript
   return tree;
 }
 
-struct Worst {
+struct UrdfWorst {
   double H = 0, g = 0;
 };
 
-Worst check_urdf_dynamics(const std::filesystem::path& description) {
-  Worst w;
+UrdfWorst check_urdf_dynamics(const std::filesystem::path& description) {
+  UrdfWorst w;
   const std::string file = description.filename().string();
   const auto d = derive_file(description);
   if (!d) return w;
@@ -260,34 +260,34 @@ Worst check_urdf_dynamics(const std::filesystem::path& description) {
     // Relative to g, unless gravity hardly loads the joints (then rounding dominates g).
     w.g = std::max(w.g, relative_difference(g, e.g, std::max(max_abs(e.g), 1e-6 * max_abs(e.H))));
   }
-  EXPECT_LT(w.H, kTolerance) << file << ": the URDF tree's H differs from dyncc's (rotors aside)";
-  EXPECT_LT(w.g, kTolerance) << file << ": the URDF tree's gravity torque differs from dyncc's";
+  EXPECT_LT(w.H, kUrdfTolerance) << file << ": the URDF tree's H differs from dyncc's (rotors aside)";
+  EXPECT_LT(w.g, kUrdfTolerance) << file << ": the URDF tree's gravity torque differs from dyncc's";
   return w;
 }
 
-void check_shipped(const std::string& file) {
-  const Worst w = check_urdf_dynamics(robots_dir() / file);
+void check_shipped_urdf(const std::string& file) {
+  const UrdfWorst w = check_urdf_dynamics(robots_dir() / file);
   std::cout << file << " URDF: max relative error H " << scientific(w.H) << "  g " << scientific(w.g) << "\n";
 }
 
-TEST(ExportUrdf, KraftTreeHasDynccDynamics) { check_shipped("kraft.yaml"); }
-TEST(ExportUrdf, Puma560TreeHasDynccDynamics) { check_shipped("puma560.yaml"); }
-TEST(ExportUrdf, PandaTreeHasDynccDynamics) { check_shipped("panda.yaml"); }
+TEST(ExportUrdf, KraftTreeHasDynccDynamics) { check_shipped_urdf("kraft.yaml"); }
+TEST(ExportUrdf, Puma560TreeHasDynccDynamics) { check_shipped_urdf("puma560.yaml"); }
+TEST(ExportUrdf, PandaTreeHasDynccDynamics) { check_shipped_urdf("panda.yaml"); }
 // Gravity along -y: the base is turned under a `world` root.
-TEST(ExportUrdf, PlanarArmTreeHasDynccDynamicsUnderTurnedBase) { check_shipped("planar_2link.yaml"); }
+TEST(ExportUrdf, PlanarArmTreeHasDynccDynamicsUnderTurnedBase) { check_shipped_urdf("planar_2link.yaml"); }
 
 // Random descriptions (export_random_robot.hpp): mimic joints, welded links, prismatic joints,
 // gravity in other directions; URDF keeps the description's own mass properties.
 TEST(ExportUrdf, RandomDescriptionsAreTreesWithDynccDynamics) {
   std::mt19937_64 rng(4243);
-  Worst largest;
+  UrdfWorst largest;
   for (int r = 0; r < 12; ++r) {
     const std::string label = cat({"random", std::to_string(r)});
     const std::string text = random_export_robot(rng, r);
     const std::filesystem::path yaml = output_path(label + ".yaml");
     std::ofstream(yaml) << text;
     check_structure(yaml);
-    const Worst w = check_urdf_dynamics(yaml);
+    const UrdfWorst w = check_urdf_dynamics(yaml);
     largest.H = std::max(largest.H, w.H);
     largest.g = std::max(largest.g, w.g);
     if (::testing::Test::HasFailure()) {

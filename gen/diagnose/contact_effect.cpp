@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "diagnose/model_batch.hpp"
+
 namespace dyncc::diagnose {
 namespace {
 
@@ -23,10 +25,9 @@ constexpr double kSlipVelocity = 0.005;  // m/s: slower sliding is not resolved 
 // that log (seed 107 case 3) the hook was beyond the grid's farthest point then (0.26 m), and a
 // gate on a point 5 cm off the hook holds rows where that point, not the hook, is low (about half
 // of what the hook's own gate explains, and implausibly).
-constexpr Eigen::Index kRowsPerBatch = 64;  // rows whose bases and frames are computed together
-constexpr double kFirstStep = 0.25;         // of the scale
-constexpr double kFinestStep = 0.03;        // of the scale: the search stops below it
-constexpr double kQuantileFactor = 2.0;     // the quantile's first step (shrinks with the point's)
+constexpr double kFirstStep = 0.25;      // of the scale
+constexpr double kFinestStep = 0.03;     // of the scale: the search stops below it
+constexpr double kQuantileFactor = 2.0;  // the quantile's first step (shrinks with the point's)
 constexpr double kSmallestQuantile = 0.001;
 constexpr double kLargestQuantile = 0.5;
 constexpr Eigen::Index kFewestTouchRows = 5;  // evaluation rows below the surface, at least
@@ -53,8 +54,8 @@ ContactRows::ContactRows(const Dataset& d, const pipeline::Derivation& derivatio
   frames_.reserve(static_cast<std::size_t>(samples));
   // On the positions only anti-aliased: a touch shorter than the filter's period is a dip that
   // the low-passed positions smooth away (see Dataset::q_sharp).
-  for (Eigen::Index chunk = 0; chunk < samples; chunk += kRowsPerBatch) {
-    const Eigen::MatrixXd q = d.q_sharp.middleRows(chunk, std::min(kRowsPerBatch, samples - chunk));
+  for (Eigen::Index chunk = 0; chunk < samples; chunk += kModelRowsPerBatch) {
+    const Eigen::MatrixXd q = d.q_sharp.middleRows(chunk, std::min(kModelRowsPerBatch, samples - chunk));
     const std::vector<ContactGeometry::Basis> bases = geometry.at_rows(q);
     for (Eigen::Index k = 0; k < q.rows(); ++k) {
       const ContactGeometry::Basis& b = bases[static_cast<std::size_t>(k)];

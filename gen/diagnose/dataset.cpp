@@ -8,6 +8,7 @@
 #include <random>
 
 #include "diagnose/column_filter.hpp"
+#include "diagnose/model_batch.hpp"
 
 namespace dyncc::diagnose {
 namespace {
@@ -17,10 +18,7 @@ constexpr double kEvaluationRate = 100.0;  // Hz: at most this many evaluation r
 constexpr double kRowsPerCutoff = 8.0;     // analysis rows per 1/cutoff
 constexpr double kEdgeTrimPeriods = 2.0;   // filter periods dropped at each end
 constexpr double kSensitivityStep = 1e-6;  // rad (or m) for d tau / dq
-// Rows whose model torques are computed together (NumericModel's batch evaluation): enough to
-// fill the tape's blocks with the 2n moved states of each, few enough to keep them small.
-constexpr Eigen::Index kRowsPerBatch = 64;
-constexpr unsigned kNoiseSeed = 1;  // the draw of position_noise_torque (fixed: same log, same diagnosis)
+constexpr unsigned kNoiseSeed = 1;         // the draw of position_noise_torque (fixed: same log, same diagnosis)
 
 // A held command acts over its whole period: it stands for the torque at the period's middle. On
 // a uniform grid, interpolating between those middles gives each row the mean torque over the
@@ -101,9 +99,9 @@ Eigen::VectorXd position_noise_torque(const std::vector<JointLog>& logs, const D
     }
     const Conditioned c = condition_log(noisy, d.audits[l], d.cutoff, false);  // its torque is not used
     const Dataset::Segment& g = d.segments[l];
-    for (Eigen::Index chunk = 0; chunk < c.t.size(); chunk += kRowsPerBatch) {
+    for (Eigen::Index chunk = 0; chunk < c.t.size(); chunk += kModelRowsPerBatch) {
       std::vector<dyn::State> states;
-      for (Eigen::Index s = chunk; s < std::min(chunk + kRowsPerBatch, c.t.size()); ++s) {
+      for (Eigen::Index s = chunk; s < std::min(chunk + kModelRowsPerBatch, c.t.size()); ++s) {
         states.push_back(
             {c.q.row(s).transpose(), c.qd.row(s).transpose(), c.qd.row(s).transpose(), c.qdd.row(s).transpose()});
       }
@@ -260,10 +258,10 @@ Dataset build_dataset(const std::vector<JointLog>& logs, const pipeline::Derivat
   for (std::size_t l = 0; l < parts.size(); ++l) {
     const Conditioned& c = parts[l];
     const Eigen::Index begin = row;
-    for (Eigen::Index chunk = 0; chunk < c.t.size(); chunk += kRowsPerBatch) {
+    for (Eigen::Index chunk = 0; chunk < c.t.size(); chunk += kModelRowsPerBatch) {
       // The model at a batch of rows, and at each row's positions moved by +-step, one joint at a
       // time: state (1 + 2 j) and (2 + 2 j) of row k are states[k * (1 + 2 n) + ...].
-      const Eigen::Index rows = std::min(kRowsPerBatch, c.t.size() - chunk);
+      const Eigen::Index rows = std::min(kModelRowsPerBatch, c.t.size() - chunk);
       std::vector<dyn::State> states, moved;
       for (Eigen::Index s = chunk; s < chunk + rows; ++s) {
         const dyn::State state{c.q.row(s).transpose(), c.qd.row(s).transpose(), c.qd.row(s).transpose(),

@@ -5,6 +5,7 @@
 #include <span>
 #include <vector>
 
+#include "diagnose/model_batch.hpp"
 #include "diagnose/signals.hpp"
 
 namespace dyncc::diagnose {
@@ -16,7 +17,6 @@ constexpr double kLargestShift = 1.0;   // rad: a fit beyond this is not a shift
 // rad: a delay's phase at the filter's cut-off below which its tangent is as good as the secant
 // (the cubic term left out is under 0.5^2 / 6 = 4 % of the shift even at the cut-off)
 constexpr double kLinearPhase = 0.5;
-constexpr Eigen::Index kRowsPerBatch = 64;  // rows whose model torques are computed together
 
 // The nominal model's torque without its friction. The drive's friction acts at the motor's
 // velocity, which is what the log's positions give, so the log and the model have the same
@@ -50,8 +50,8 @@ Eigen::VectorXd secant(const Dataset& d, const ModelTorque& model, const Shift& 
                        Eigen::Index j, double theta) {
   const Eigen::Index n = d.n;
   Eigen::VectorXd column(d.samples() * n);
-  for (Eigen::Index chunk = 0; chunk < d.samples(); chunk += kRowsPerBatch) {
-    const Eigen::Index rows = std::min(kRowsPerBatch, d.samples() - chunk);
+  for (Eigen::Index chunk = 0; chunk < d.samples(); chunk += kModelRowsPerBatch) {
+    const Eigen::Index rows = std::min(kModelRowsPerBatch, d.samples() - chunk);
     std::vector<dyn::State> states;
     for (Eigen::Index s = chunk; s < chunk + rows; ++s) {
       dyn::State x{d.q.row(s).transpose(), d.qd.row(s).transpose(), {}, d.qdd.row(s).transpose()};
@@ -115,10 +115,10 @@ ModelSensitivity model_sensitivity(const Dataset& d, const pipeline::Derivation&
   ModelSensitivity m;
   m.tau.resize(samples, n);
   m.transmitted.resize(samples, n);
-  for (Eigen::Index chunk = 0; chunk < samples; chunk += kRowsPerBatch) {
+  for (Eigen::Index chunk = 0; chunk < samples; chunk += kModelRowsPerBatch) {
     // Each row's state, then the same with one joint's velocity faster, joint by joint: the
     // torque is quadratic in the velocity, so a short forward difference is its derivative.
-    const Eigen::Index rows = std::min(kRowsPerBatch, samples - chunk);
+    const Eigen::Index rows = std::min(kModelRowsPerBatch, samples - chunk);
     std::vector<dyn::State> states, faster;
     for (Eigen::Index s = chunk; s < chunk + rows; ++s) {
       const dyn::State x{d.q.row(s).transpose(), d.qd.row(s).transpose(), d.qd.row(s).transpose(),

@@ -8,20 +8,10 @@
 #include <unordered_set>
 
 #include "sym/node.hpp"
+#include "sym/wide_gcd.hpp"
 
 namespace dyncc::sym {
 namespace {
-
-Int128 gcd128(Int128 a, Int128 b) {
-  if (a < 0) a = -a;
-  if (b < 0) b = -b;
-  while (b != 0) {
-    const Int128 t = a % b;
-    a = b;
-    b = t;
-  }
-  return a;
-}
 
 std::size_t mix(std::size_t h, std::size_t v) {
   // 64-bit hash combine (boost-style with a better multiplier); deterministic by construction.
@@ -179,9 +169,9 @@ PrimitivePart primitive_part(Expr sum) {
   Int128 l = 1;  // lcm of the denominators; 0 once it does not fit (then they stay as they are)
   auto visit = [&](const Rational& w) {
     if (w.is_zero()) return;
-    g = gcd128(g, w.num());
+    g = wide_gcd(g, w.num());
     if (l != 0) {
-      l = l / gcd128(l, w.den()) * w.den();
+      l = l / wide_gcd(l, w.den()) * w.den();
       if (l > kMax) l = 0;
     }
   };

@@ -1,9 +1,16 @@
 #include "sym/rational.hpp"
 
+#include "sym/wide_gcd.hpp"
+
 namespace dyncc::sym {
 namespace {
 
-Int128 gcd128(Int128 a, Int128 b) {
+// The symmetric range (see rational.hpp): -2^63 does not fit.
+bool fits64(Int128 v) { return v >= Rational::kMinNumerator && v <= Rational::kMaxNumerator; }
+
+}  // namespace
+
+Int128 wide_gcd(Int128 a, Int128 b) {
   if (a < 0) a = -a;
   if (b < 0) b = -b;
   while (b != 0) {
@@ -14,11 +21,6 @@ Int128 gcd128(Int128 a, Int128 b) {
   return a;
 }
 
-// The symmetric range (see rational.hpp): -2^63 does not fit.
-bool fits64(Int128 v) { return v >= Rational::kMinNumerator && v <= Rational::kMaxNumerator; }
-
-}  // namespace
-
 Rational::Rational(std::int64_t n, std::int64_t d) { *this = from_wide(n, d); }
 
 Rational Rational::from_wide(Int128 n, Int128 d) {
@@ -27,7 +29,7 @@ Rational Rational::from_wide(Int128 n, Int128 d) {
     n = -n;
     d = -d;
   }
-  const Int128 g = gcd128(n, d);
+  const Int128 g = wide_gcd(n, d);
   if (g > 1) {
     n /= g;
     d /= g;
