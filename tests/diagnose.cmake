@@ -4,7 +4,8 @@
 dyncc_add_test(diagnose_tests diagnose_log_test.cpp diagnose_effect_test.cpp diagnose_cli_test.cpp
                diagnose_report_test.cpp diagnose_blind_case_test.cpp diagnose_transmission_test.cpp
                diagnose_regime_error_test.cpp diagnose_plausibility_test.cpp diagnose_payload_window_test.cpp
-               diagnose_contact_search_test.cpp diagnose_crossval_test.cpp diagnose_fold_plan_test.cpp)
+               diagnose_contact_search_test.cpp diagnose_crossval_test.cpp diagnose_fold_plan_test.cpp
+               diagnose_bench_truth_test.cpp)
 target_link_libraries(diagnose_tests PRIVATE dyncc_diagnose dyncc_pipeline nlohmann_json::nlohmann_json)
 add_dependencies(diagnose_tests dyncc)  # the command-line tests run it
 # Unlike the other tests, several of these run the whole diagnosis in-process, and the linker keeps

@@ -22,6 +22,7 @@
 
 #include "cli/commands.hpp"
 #include "cli/robot_input.hpp"
+#include "diagnose/bench_truth.hpp"
 #include "diagnose/crossval.hpp"
 #include "diagnose/dataset.hpp"
 #include "diagnose/effects.hpp"
@@ -323,7 +324,7 @@ CaseScore score_case(const Case& k, const nlohmann::json& result, const std::vec
     for (Score* x : scores) x->*field += yes ? 1 : 0;
   };
   count_in(&Score::cases, true);
-  const bool right = first == truth_name;
+  const bool right = diagnose::names_injected_effect(first, k.effects);
   count_in(&Score::top1, right);
   if (!right && !k.effects.empty() && verdict.find(" or " + truth_name) != std::string::npos) {
     count_in(&Score::ties, true);
