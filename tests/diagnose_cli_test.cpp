@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <fstream>
+#include <iterator>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -84,6 +85,70 @@ TEST(Sim2RealBench, WritesTruthApartAndDiagnosesEachLog) {
   std::ifstream first(out / "case000" / "diagnosis.json");
   EXPECT_EQ(nlohmann::json::parse(first)["verdict"]["effect"], "none");
   EXPECT_TRUE(std::filesystem::exists(out / "summary.md"));
+}
+
+// A bench's case folder as the bench leaves it: caseNNN/truth.json and diagnosis.json.
+void write_bench_case(const std::filesystem::path& out, int c, const std::string& truth, const std::string& diagnosis) {
+  const auto dir = out / fmt::format("case{:03d}", c);
+  std::filesystem::create_directories(dir);
+  std::ofstream(dir / "truth.json") << truth;
+  std::ofstream(dir / "diagnosis.json") << diagnosis;
+}
+
+// --rescore scores stored cases again without making or diagnosing anything: an effect-free log
+// said none, a Coulomb friction injected with a Stribeck excess of its joint named as the Stribeck
+// friction (right, its fc scored), and a gain named as a rotor inertia (wrong).
+TEST(Sim2RealBench, RescoreScoresTheStoredCasesAgain) {
+  const auto out = output_path("rescored");
+  const std::string gap =
+      R"("gap": {"heldout_rms": [0.05, 0.01, 0.01], "heldout_rms_after_selected": [0.01, 0.01, 0.01]})";
+  write_bench_case(out, 0,
+                   R"({"arm": "kraft", "plant": "dyncc", "trajectory": "fourier", "rate": 200, "fraction": 0.2,
+                       "effects": []})",
+                   R"({"verdict": {"effect": "none", "joints": [], "confidence": 1}, "selected": [], )" + gap + "}");
+  write_bench_case(out, 1,
+                   R"({"arm": "kraft", "plant": "dyncc", "trajectory": "fourier", "rate": 200, "fraction": 0.2,
+                       "effects": [{"effect": "coulomb_friction", "joint": 1, "size": 0.0700},
+                                   {"effect": "stribeck_friction", "joint": 1, "size": 0.141}]})",
+                   R"({"verdict": {"effect": "stribeck_friction", "joints": [1], "confidence": 1},
+                       "selected": [{"effect": "stribeck_friction", "joints": [1], "parameters": [
+                         {"name": "fc1", "value": 0.0701, "error": 0.0002, "interval95": [0.0697, 0.0705]},
+                         {"name": "fs1", "value": 0.157, "error": 0.007, "interval95": [0.143, 0.171]}]}], )" +
+                       gap + "}");
+  write_bench_case(out, 2,
+                   R"({"arm": "kraft", "plant": "mujoco", "trajectory": "teleop", "rate": 500, "fraction": 0.2,
+                       "effects": [{"effect": "torque_gain", "joint": 2, "size": 1.1}]})",
+                   R"({"verdict": {"effect": "rotor_inertia", "joints": [2], "confidence": 1},
+                       "selected": [{"effect": "rotor_inertia", "joints": [2], "parameters": [
+                         {"name": "ia2", "value": 0.1, "error": 0.01, "interval95": [0.08, 0.12]}]}], )" +
+                       gap + "}");
+  const DynccRun run = run_dyncc("sim2real-bench --rescore --out " + quoted(out));
+  ASSERT_EQ(run.exit_code, 0) << run.errors;
+  std::ifstream in(out / "summary.md");
+  const std::string summary((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_NE(summary.find("| top-1 effect >= 90 % at sizes >= 10 % | 50 % (1/2) | NOT met |"), std::string::npos)
+      << summary;
+  EXPECT_NE(summary.find("| false alarms on effect-free logs <= 5 % | 0 % (0/1) | met |"), std::string::npos);
+  EXPECT_NE(summary.find("| parameters within 10 % (payload 3 %, delay one sample) | 100 % (1/1) | met |"),
+            std::string::npos);
+  EXPECT_NE(summary.find("fc1 = 0.0701"), std::string::npos) << "the Coulomb friction's fit is scored";
+
+  // A folder that is not a bench's, and a diagnosis that is not the bench's JSON: exit 2, the
+  // place named.
+  const auto empty = output_path("not-a-bench");
+  std::filesystem::create_directories(empty);
+  const DynccRun none = run_dyncc("sim2real-bench --rescore --out " + quoted(empty));
+  EXPECT_EQ(none.exit_code, 2);
+  EXPECT_NE(none.errors.find("--rescore: expected caseNNN folders with a truth.json"), std::string::npos)
+      << none.errors;
+  write_bench_case(out, 3,
+                   R"({"arm": "kraft", "plant": "dyncc", "trajectory": "fourier", "rate": 200, "fraction": 0.1,
+                       "effects": []})",
+                   R"({"verdict": {"effect": "none"}})");
+  const DynccRun broken = run_dyncc("sim2real-bench --rescore --out " + quoted(out));
+  EXPECT_EQ(broken.exit_code, 2);
+  EXPECT_NE(broken.errors.find("case003/diagnosis.json: error: expected the bench's diagnosis.json"), std::string::npos)
+      << broken.errors;
 }
 
 // One entry of an effects file: `effect` on `joint` (from 1), its parameter `name` = `value`.

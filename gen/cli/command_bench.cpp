@@ -209,12 +209,12 @@ bool within_goal(const std::string& effect, double fitted, double target, double
 std::vector<double> tie_fits(const nlohmann::json& result, const diagnose::Injection& e) {
   const auto [name, value] = measured_parameter(e);
   std::vector<double> out;
-  for (const auto& sel : result["selected"]) {
+  for (const auto& sel : result.at("selected")) {
     if (name.empty() || !sel.contains("alternatives")) continue;
-    for (const auto& a : sel["alternatives"]) {
-      if (a["effect"] != e.effect) continue;
-      for (const auto& p : a["parameters"]) {
-        if (p["name"] == name) out.push_back(p["value"].get<double>());
+    for (const auto& a : sel.at("alternatives")) {
+      if (a.at("effect") != e.effect) continue;
+      for (const auto& p : a.at("parameters")) {
+        if (p.at("name") == name) out.push_back(p.at("value").get<double>());
       }
     }
   }
@@ -316,9 +316,9 @@ struct CaseScore {
   std::vector<std::string> misses;
 };
 CaseScore score_case(const Case& k, const nlohmann::json& result, const std::vector<Score*>& scores) {
-  const std::string verdict = result["verdict"]["effect"];
+  const std::string verdict = result.at("verdict").at("effect");
   const std::string first = verdict.substr(0, verdict.find(" or "));
-  const std::vector<int> joints = result["verdict"]["joints"].get<std::vector<int>>();
+  const std::vector<int> joints = result.at("verdict").at("joints").get<std::vector<int>>();
   const std::string truth_name = k.effects.empty() ? std::string("none") : k.effects.front().effect;
   auto count_in = [&](int Score::*field, bool yes) {
     for (Score* x : scores) x->*field += yes ? 1 : 0;
@@ -344,13 +344,13 @@ CaseScore score_case(const Case& k, const nlohmann::json& result, const std::vec
       count_in(&Score::located, located);
       if (right && !located) out.misses.emplace_back("joint");
     }
-    if (right && !result["selected"].empty()) {
-      const auto& sel = result["selected"][0];
+    if (right && !result.at("selected").empty()) {
+      const auto& sel = result.at("selected").at(0);
       const auto [name, value] = measured_parameter(main);
-      for (const auto& p : sel["parameters"]) {
-        if (name.empty() || p["name"] != name) continue;
-        const double fitted = p["value"];
-        const double error = p["error"];
+      for (const auto& p : sel.at("parameters")) {
+        if (name.empty() || p.at("name") != name) continue;
+        const double fitted = p.at("value");
+        const double error = p.at("error");
         const double target = value;
         const bool ok = within_goal(main.effect, fitted, target, k.rate);
         count_in(&Score::parameters, true);
@@ -362,7 +362,7 @@ CaseScore score_case(const Case& k, const nlohmann::json& result, const std::vec
         constexpr double kUnbounded = std::numeric_limits<double>::infinity();
         double low = fitted, high = fitted;
         if (p.contains("interval95")) {
-          const auto& interval = p["interval95"];
+          const auto& interval = p.at("interval95");
           low = interval[0].is_null() ? -kUnbounded : interval[0].get<double>();
           high = interval[1].is_null() ? kUnbounded : interval[1].get<double>();
         }
@@ -372,7 +372,8 @@ CaseScore score_case(const Case& k, const nlohmann::json& result, const std::vec
       }
       // Gap closure on the effect's joint: the share of the held-out gap that is gone.
       const auto j = static_cast<std::size_t>(main.joint);
-      const double before = result["gap"]["heldout_rms"][j], after = result["gap"]["heldout_rms_after_selected"][j];
+      const double before = result.at("gap").at("heldout_rms").at(j),
+                   after = result.at("gap").at("heldout_rms_after_selected").at(j);
       const double closure = before > 0 ? 1.0 - (after * after) / (before * before) : 0.0;
       count_in(&Score::closures, true);
       count_in(&Score::closure_ok, closure >= 0.8);
@@ -457,7 +458,104 @@ nlohmann::json truth_json(const Case& k, const diagnose::SyntheticOptions& so, b
   return truth;
 }
 
+// The scores of the cases so far, by size, by injected effect and by the log's source, and the
+// summary's rows.
+struct Tallies {
+  std::map<std::string, Score> by_size;  // "none", "5%", "10%", "20%"
+  std::map<std::string, Score> by_effect;
+  std::map<std::string, Score> by_source;  // "open loop (model)", "dyncc fourier", "mujoco teleop", ...
+  std::string rows;
+
+  // Case c scored: counted, its row of the summary kept, its line printed.
+  void add(int c, const Case& k, const nlohmann::json& result) {
+    const std::string verdict = result.at("verdict").at("effect");
+    const std::vector<int> joints = result.at("verdict").at("joints").get<std::vector<int>>();
+    const std::string bin = k.effects.empty() ? std::string("none") : fmt::format("{:.0f} %", 100 * k.fraction);
+    const std::string truth_name = k.effects.empty() ? std::string("none") : k.effects.front().effect;
+    const std::string source = k.plant == "model" ? std::string("open loop (model)") : k.plant + " " + k.trajectory;
+    const CaseScore scored = score_case(k, result, {&by_size[bin], &by_effect[truth_name], &by_source[source]});
+    std::string injected;
+    for (const auto& e : k.effects) {
+      injected =
+          fmt::format("{}{}{}@{} {:.3g}", injected, injected.empty() ? "" : " + ", e.effect, e.joint + 1, e.size);
+    }
+    rows += fmt::format("| {} | {} | {} | {:.0f} | {} | {} | {} | {} | {} |\n", c, k.arm, source, k.rate,
+                        injected.empty() ? "none" : injected, bin, verdict, fmt::join(joints, ","), scored.detail);
+    fmt::print("case {:3d} {:8} {:17} {:5.0f} Hz  {:<48} -> {} [{}] {}\n", c, k.arm, source, k.rate,
+               injected.empty() ? "none" : injected, verdict, fmt::join(joints, ","),
+               scored.misses.empty() ? "" : fmt::format("({})", fmt::join(scored.misses, ", ")));
+    std::fflush(stdout);
+  }
+
+  // The goals' tables on the terminal; with the rows, summary.md in `out`.
+  void write_summary(const std::string& out) const {
+    const std::string tables = score_tables(by_size, by_effect, by_source);
+    const std::string summary = fmt::format(
+        "{}\n| case | arm | log from | Hz | injected | size | verdict | joints | fit |\n"
+        "|---|---|---|---|---|---|---|---|---|\n{}",
+        tables, rows);
+    fmt::print("\n{}", tables);
+    std::ofstream(fs::path(out) / "summary.md") << summary;
+  }
+};
+
+// A case as its truth.json states it (truth_json's inverse; its joints are numbered from 1).
+Case case_from_truth(const nlohmann::json& truth) {
+  Case k;
+  k.arm = truth.at("arm");
+  k.plant = truth.at("plant");
+  k.trajectory = truth.at("trajectory");
+  k.rate = truth.at("rate");
+  k.fraction = truth.at("fraction");
+  for (const auto& e : truth.at("effects")) {
+    diagnose::Injection inj;
+    inj.effect = e.at("effect");
+    inj.joint = e.at("joint").get<int>() - 1;
+    inj.size = e.at("size");
+    k.effects.push_back(inj);
+  }
+  return k;
+}
+
+// --rescore: the cases already in the folder (caseNNN/truth.json and diagnosis.json) scored again,
+// nothing simulated or diagnosed: a change of the scoring, checked on stored benches.
+int rescore_bench(const BenchOptions& o) {
+  std::vector<std::pair<int, fs::path>> cases;
+  std::error_code error;
+  for (const auto& entry : fs::directory_iterator(o.out, error)) {
+    const std::string name = entry.path().filename().string();
+    if (entry.is_directory() && name.size() > 4 && name.starts_with("case") &&
+        name.find_first_not_of("0123456789", 4) == std::string::npos && fs::exists(entry.path() / "truth.json")) {
+      cases.emplace_back(std::stoi(name.substr(4)), entry.path());
+    }
+  }
+  if (error || cases.empty()) {
+    fmt::print(stderr, "{}: error: --rescore: expected caseNNN folders with a truth.json (a bench's --out)\n", o.out);
+    return kBadInput;
+  }
+  std::sort(cases.begin(), cases.end());
+  Tallies tallies;
+  for (const auto& [c, dir] : cases) {
+    // Each file read, and the case scored, or the file named with what is wrong in it.
+    fs::path file = dir / "truth.json";
+    try {
+      std::ifstream truth(file);
+      const Case k = case_from_truth(nlohmann::json::parse(truth));
+      file = dir / "diagnosis.json";
+      std::ifstream diagnosis(file);
+      tallies.add(c, k, nlohmann::json::parse(diagnosis));
+    } catch (const nlohmann::json::exception& e) {
+      fmt::print(stderr, "{}: error: expected the bench's {} ({})\n", file.string(), file.filename().string(),
+                 e.what());
+      return kBadInput;
+    }
+  }
+  tallies.write_summary(o.out);
+  return kSuccess;
+}
+
 int run_sim2real_bench(const BenchOptions& o) {
+  if (o.rescore) return rescore_bench(o);
   const std::vector<std::string> arms = o.arms;
   std::map<std::string, std::unique_ptr<pipeline::Derivation>> derived;
   for (const std::string& arm : arms) {
@@ -487,10 +585,7 @@ int run_sim2real_bench(const BenchOptions& o) {
     }
   }
 
-  std::map<std::string, Score> by_size;  // "none", "5%", "10%", "20%"
-  std::map<std::string, Score> by_effect;
-  std::map<std::string, Score> by_source;  // "open loop (model)", "dyncc fourier", "mujoco teleop", ...
-  std::string rows;
+  Tallies tallies;
   for (int c = 0; c < o.cases; ++c) {
     Case k;
     k.arm = arms[static_cast<std::size_t>(c) % arms.size()];
@@ -567,32 +662,9 @@ int run_sim2real_bench(const BenchOptions& o) {
       return kCheckFailed;
     }
     std::ifstream in(dir / "diagnosis.json");
-    const nlohmann::json result = nlohmann::json::parse(in);
-    const std::string verdict = result["verdict"]["effect"];
-    const std::vector<int> joints = result["verdict"]["joints"].get<std::vector<int>>();
-    const std::string bin = k.effects.empty() ? std::string("none") : fmt::format("{:.0f} %", 100 * k.fraction);
-    const std::string truth_name = k.effects.empty() ? std::string("none") : k.effects.front().effect;
-    const std::string source = k.plant == "model" ? std::string("open loop (model)") : k.plant + " " + k.trajectory;
-    const CaseScore scored = score_case(k, result, {&by_size[bin], &by_effect[truth_name], &by_source[source]});
-    std::string injected;
-    for (const auto& e : k.effects) {
-      injected =
-          fmt::format("{}{}{}@{} {:.3g}", injected, injected.empty() ? "" : " + ", e.effect, e.joint + 1, e.size);
-    }
-    rows += fmt::format("| {} | {} | {} | {:.0f} | {} | {} | {} | {} | {} |\n", c, k.arm, source, k.rate,
-                        injected.empty() ? "none" : injected, bin, verdict, fmt::join(joints, ","), scored.detail);
-    fmt::print("case {:3d} {:8} {:17} {:5.0f} Hz  {:<48} -> {} [{}] {}\n", c, k.arm, source, k.rate,
-               injected.empty() ? "none" : injected, verdict, fmt::join(joints, ","),
-               scored.misses.empty() ? "" : fmt::format("({})", fmt::join(scored.misses, ", ")));
-    std::fflush(stdout);
+    tallies.add(c, k, nlohmann::json::parse(in));
   }
-  const std::string tables = score_tables(by_size, by_effect, by_source);
-  const std::string summary = fmt::format(
-      "{}\n| case | arm | log from | Hz | injected | size | verdict | joints | fit |\n"
-      "|---|---|---|---|---|---|---|---|---|\n{}",
-      tables, rows);
-  fmt::print("\n{}", tables);
-  std::ofstream(fs::path(o.out) / "summary.md") << summary;
+  tallies.write_summary(o.out);
   return kSuccess;
 }
 

@@ -122,6 +122,9 @@ void add_output_commands(CLI::App& app, int& exit_code) {
                         "Kraft logs at 200 Hz and above from the closed-loop simulation on both plants (default true)");
   bench_cmd->add_option("--effects", bench->effects, "Effects to draw from (default all the bench can inject)")
       ->check(CLI::IsMember(dyncc::diagnose::injectable_effects()));
+  bench_cmd->add_flag("--rescore", bench->rescore,
+                      "Score the cases already in --out again (their truth.json and diagnosis.json); make and "
+                      "diagnose nothing");
   bench_cmd->callback([&exit_code, bench] { exit_code = run_sim2real_bench(*bench); });
 }
 
