@@ -74,6 +74,12 @@ for entry in json.load(open(db)):
 EOF
 )
 ((${#files[@]})) || { echo "tidy.sh: no matching sources in $build/compile_commands.json" >&2; exit 2; }
+# The `test` preset (what CI builds) compiles the test executables as unity builds, whose compile
+# commands name the batches, not the test files: --all would then skip tests/ without a word.
+if [[ $scope == *tests* ]] && grep -q '/tests/CMakeFiles/[^"]*/Unity/unity_' "$build/compile_commands.json"; then
+  echo "tidy.sh: the tests in $build are unity builds (the test preset), so tests/ is not checked;" \
+    "configure it with 'cmake --preset release' first" >&2
+fi
 
 if [[ -n $since ]]; then
   if ! git -C "$root" cat-file -e "$since^{commit}" 2>/dev/null; then
