@@ -41,6 +41,9 @@ struct Case {
   double rate = 0, fraction = 0;
   std::vector<diagnose::Injection> effects;
   std::vector<double> effect_rms;  // per injected effect: its torque RMS on its joint (or the arm's largest)
+
+  // The effect the case is scored by: the largest injected one, or "none".
+  [[nodiscard]] std::string scored_effect() const { return effects.empty() ? "none" : effects.front().effect; }
 };
 
 // The parameter of the diagnosis that measures an injected effect, and its true value.
@@ -319,7 +322,7 @@ CaseScore score_case(const Case& k, const nlohmann::json& result, const std::vec
   const std::string verdict = result.at("verdict").at("effect");
   const std::string first = verdict.substr(0, verdict.find(" or "));
   const std::vector<int> joints = result.at("verdict").at("joints").get<std::vector<int>>();
-  const std::string truth_name = k.effects.empty() ? std::string("none") : k.effects.front().effect;
+  const std::string truth_name = k.scored_effect();
   auto count_in = [&](int Score::*field, bool yes) {
     for (Score* x : scores) x->*field += yes ? 1 : 0;
   };
@@ -471,7 +474,7 @@ struct Tallies {
     const std::string verdict = result.at("verdict").at("effect");
     const std::vector<int> joints = result.at("verdict").at("joints").get<std::vector<int>>();
     const std::string bin = k.effects.empty() ? std::string("none") : fmt::format("{:.0f} %", 100 * k.fraction);
-    const std::string truth_name = k.effects.empty() ? std::string("none") : k.effects.front().effect;
+    const std::string truth_name = k.scored_effect();
     const std::string source = k.plant == "model" ? std::string("open loop (model)") : k.plant + " " + k.trajectory;
     const CaseScore scored = score_case(k, result, {&by_size[bin], &by_effect[truth_name], &by_source[source]});
     std::string injected;
