@@ -15,6 +15,7 @@
 
 #include "arm.hpp"
 #include "effects_file.hpp"
+#include "potentiometers.hpp"
 #include "scenario.hpp"
 
 namespace dyncc::sim {
@@ -25,11 +26,11 @@ struct ExciteSettings {
   PlantKind plant = PlantKind::dyncc;
   std::string mjcf;  // the exported MJCF, for the MuJoCo plant
   Trajectory trajectory = Trajectory::fourier;
-  double rate = 200.0;                                 // Hz, the control loop and the log (81..1000)
-  double duration = 60.0;                              // s
-  unsigned seed = 1;                                   // the Fourier series, the sensor noise, the operator's run
-  double quantum = 2 * 3.14159265358979323846 / 4096;  // rad (0: not quantised), a 12-bit potentiometer
-  double noise = 3e-4;                                 // rad, standard deviation
+  double rate = 200.0;                     // Hz, the control loop and the log (81..1000)
+  double duration = 60.0;                  // s
+  unsigned seed = 1;                       // the Fourier series, the sensor noise, the operator's run
+  double quantum = kPotentiometerQuantum;  // rad (0: not quantised), a 12-bit potentiometer
+  double noise = kPotentiometerNoise;      // rad, standard deviation
   HiddenEffects effects;
   double lambda = 5.0;  // rad/s, the controller's bandwidth
   // rad/s, the alpha-beta-gamma velocity estimate from the readings. Twice the tele-operation

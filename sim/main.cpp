@@ -120,7 +120,7 @@ int run_report(const ReportOptions& o) {
 
 struct ExciteOptions {
   std::string plant = "dyncc", trajectory = "fourier", effects, out, mjcf = default_mjcf();
-  double rate = 200, duration = 60, quantum = 2 * 3.14159265358979323846 / 4096, noise = 3e-4;
+  double rate = 200, duration = 60, quantum = kPotentiometerQuantum, noise = kPotentiometerNoise;
   unsigned seed = 1;
 };
 

@@ -5,11 +5,17 @@
 #pragma once
 
 #include <cmath>
+#include <numbers>
 #include <random>
 
 #include "arm.hpp"
 
 namespace dyncc::sim {
+
+/// The Kraft's potentiometers, the runs' default: a 12-bit ADC over a turn (rad per count), and
+/// the analogue noise on the reading (rad, standard deviation).
+inline constexpr double kPotentiometerQuantum = 2 * std::numbers::pi / 4096;
+inline constexpr double kPotentiometerNoise = 3e-4;
 
 class Potentiometers {
  public:

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "arm.hpp"
+#include "potentiometers.hpp"
 
 namespace dyncc::sim {
 
@@ -23,12 +24,12 @@ struct ScenarioSettings {
   bool simplified = false;         // controller without velocity terms (Fig. 8)
   bool freeze_in_contact = false;  // adaptation off while the hook touches the table
   PlantKind plant = PlantKind::dyncc;
-  std::string mjcf;                              // the exported MJCF, for the MuJoCo plant
-  std::string master_csv;                        // replay this master trajectory instead of the operator model
-  double control_rate = 81.0;                    // Hz, the paper's loop
-  double plant_rate = 2000.0;                    // Hz, integration
-  double quantum = 2 * 3.14159265358979 / 4096;  // rad: a 12-bit potentiometer over a turn
-  double noise = 3e-4;                           // rad, standard deviation of the potentiometer noise
+  std::string mjcf;                        // the exported MJCF, for the MuJoCo plant
+  std::string master_csv;                  // replay this master trajectory instead of the operator model
+  double control_rate = 81.0;              // Hz, the paper's loop
+  double plant_rate = 2000.0;              // Hz, integration
+  double quantum = kPotentiometerQuantum;  // rad: a 12-bit potentiometer over a turn
+  double noise = kPotentiometerNoise;      // rad, standard deviation of the potentiometer noise
   unsigned seed = 1;
   Joints torque_limit{6.0, 12.0, 12.0};  // N m, actuator saturation
   double estimator_bandwidth = 25.0;     // rad/s, alpha-beta-gamma filters on the potentiometers
