@@ -13,6 +13,8 @@
 #include <vector>
 
 #include "cli_support.hpp"
+#include "diagnose/synthetic_log.hpp"
+#include "dynamics_support.hpp"
 
 namespace dyncc::test {
 namespace {
@@ -149,6 +151,54 @@ TEST(Sim2RealBench, RescoreScoresTheStoredCasesAgain) {
   EXPECT_EQ(broken.exit_code, 2);
   EXPECT_NE(broken.errors.find("case003/diagnosis.json: error: expected the bench's diagnosis.json"), std::string::npos)
       << broken.errors;
+}
+
+// --rediagnose diagnoses a stored bench's logs again into another folder and scores them there,
+// leaving the stored diagnoses as they were: one open-loop Kraft log with a Coulomb friction of
+// joint 2, stored with a diagnosis that names something else.
+TEST(Sim2RealBench, RediagnoseDiagnosesTheStoredLogsAgainIntoAnotherFolder) {
+  const auto stored = output_path("stored-bench");
+  const std::string stale = R"({"verdict": {"effect": "none", "joints": [], "confidence": 1}, "selected": [],
+                                "gap": {"heldout_rms": [0.05, 0.01, 0.01], "heldout_rms_after_selected": [0.05, 0.01, 0.01]}})";
+  write_bench_case(stored, 7,
+                   R"({"arm": "kraft", "plant": "model", "trajectory": "fourier", "rate": 200, "fraction": 0.2,
+                       "effects": [{"effect": "coulomb_friction", "joint": 2, "size": 0.15}]})",
+                   stale);
+  diagnose::SyntheticOptions options;
+  options.duration = 20;
+  diagnose::write_synthetic_log(kraft_derivation(), {{.effect = "coulomb_friction", .joint = 1, .size = 0.15}}, options,
+                                stored / "case007" / "log.csv");
+  const auto out = output_path("rediagnosed");
+  const std::string robots = " --robots " + quoted(std::filesystem::path(DYNCC_SOURCE_DIR) / "robots");
+  const DynccRun run =
+      run_dyncc("sim2real-bench" + robots + " --rediagnose " + quoted(stored) + " --out " + quoted(out), 600);
+  ASSERT_EQ(run.exit_code, 0) << run.errors;
+  std::ifstream fresh(out / "case007" / "diagnosis.json");
+  const nlohmann::json d = nlohmann::json::parse(fresh);
+  EXPECT_EQ(d["verdict"]["effect"], "coulomb_friction");
+  EXPECT_EQ(d["verdict"]["joints"], std::vector<int>{2});
+  EXPECT_TRUE(std::filesystem::exists(out / "case007" / "truth.json"));
+  EXPECT_FALSE(std::filesystem::exists(out / "case007" / "log.csv")) << "the log is read where it is stored";
+  std::ifstream kept(stored / "case007" / "diagnosis.json");
+  EXPECT_EQ(nlohmann::json::parse(kept)["verdict"]["effect"], "none") << "the stored diagnosis is kept";
+  std::ifstream in(out / "summary.md");
+  const std::string summary((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_NE(summary.find("| top-1 effect >= 90 % at sizes >= 10 % | 100 % (1/1) | met |"), std::string::npos)
+      << summary;
+
+  // A stored case without its log, and a folder that is not a bench's: exit 2, the place named.
+  std::filesystem::remove(stored / "case007" / "log.csv");
+  const DynccRun missing =
+      run_dyncc("sim2real-bench" + robots + " --rediagnose " + quoted(stored) + " --out " + quoted(out));
+  EXPECT_EQ(missing.exit_code, 2);
+  EXPECT_NE(missing.errors.find("case007/log.csv: error: --rediagnose: the case's log is missing"), std::string::npos)
+      << missing.errors;
+  const auto empty = output_path("not-a-stored-bench");
+  std::filesystem::create_directories(empty);
+  const DynccRun none = run_dyncc("sim2real-bench --rediagnose " + quoted(empty) + " --out " + quoted(out));
+  EXPECT_EQ(none.exit_code, 2);
+  EXPECT_NE(none.errors.find("--rediagnose: expected caseNNN folders with a truth.json"), std::string::npos)
+      << none.errors;
 }
 
 // One entry of an effects file: `effect` on `joint` (from 1), its parameter `name` = `value`.

@@ -520,36 +520,105 @@ Case case_from_truth(const nlohmann::json& truth) {
   return k;
 }
 
-// --rescore: the cases already in the folder (caseNNN/truth.json and diagnosis.json) scored again,
-// nothing simulated or diagnosed: a change of the scoring, checked on stored benches.
-int rescore_bench(const BenchOptions& o) {
+// The case folders of a stored bench (caseNNN with a truth.json), in order; empty when there are
+// none or the folder cannot be read.
+std::vector<std::pair<int, fs::path>> stored_cases(const fs::path& bench) {
   std::vector<std::pair<int, fs::path>> cases;
   std::error_code error;
-  for (const auto& entry : fs::directory_iterator(o.out, error)) {
+  for (const auto& entry : fs::directory_iterator(bench, error)) {
     const std::string name = entry.path().filename().string();
     if (entry.is_directory() && name.size() > 4 && name.starts_with("case") &&
         name.find_first_not_of("0123456789", 4) == std::string::npos && fs::exists(entry.path() / "truth.json")) {
       cases.emplace_back(std::stoi(name.substr(4)), entry.path());
     }
   }
-  if (error || cases.empty()) {
-    fmt::print(stderr, "{}: error: --rescore: expected caseNNN folders with a truth.json (a bench's --out)\n", o.out);
+  if (error) cases.clear();
+  std::sort(cases.begin(), cases.end());
+  return cases;
+}
+
+// A stored JSON file, or the file named with what is wrong in it (nullopt).
+std::optional<nlohmann::json> read_stored_json(const fs::path& file) {
+  try {
+    std::ifstream in(file);
+    return nlohmann::json::parse(in);
+  } catch (const nlohmann::json::exception& e) {
+    fmt::print(stderr, "{}: error: expected the bench's {} ({})\n", file.string(), file.filename().string(), e.what());
+    return std::nullopt;
+  }
+}
+
+// The diagnosis as its own process, on the log alone, writing dir/diagnosis.json (and its text
+// beside it). What it is told is how the log was written, as a user knows it of their own: the
+// closed-loop torque is the controller's command, held over each period; the open-loop torque is
+// the model's at the row's instant. Its JSON, or nullopt (said on stderr) when it failed.
+std::optional<nlohmann::json> diagnose_case(const BenchOptions& o, int c, const Case& k, const fs::path& log,
+                                            const fs::path& dir) {
+  const bool closed = k.plant != "model";
+  const std::string command = fmt::format("{} diagnose {} {}{} --json {} > {} 2>&1", shell_quoted(self_path()),
+                                          shell_quoted(fs::path(o.robots) / fmt::format("{}.yaml", k.arm)),
+                                          shell_quoted(log), closed ? " --held-torque" : "",
+                                          shell_quoted(dir / "diagnosis.json"), shell_quoted(dir / "diagnosis.txt"));
+  const int status = std::system(command.c_str());
+  if (status != 0) {
+    fmt::print(stderr, "case {}: dyncc diagnose failed (status {}); see {}\n", c, status,
+               (dir / "diagnosis.txt").string());
+    return std::nullopt;
+  }
+  return read_stored_json(dir / "diagnosis.json");
+}
+
+// --rescore: the cases already in the folder (caseNNN/truth.json and diagnosis.json) scored again,
+// nothing simulated or diagnosed: a change of the scoring, checked on stored benches.
+// --rediagnose FROM: the logs of FROM's cases diagnosed again by this binary into --out (each
+// case's truth.json copied, its log read where it is), then scored: a change of the diagnosis,
+// checked on stored benches without simulating them again, FROM's own diagnoses kept to compare.
+int rescore_bench(const BenchOptions& o) {
+  const bool rediagnose = !o.rediagnose.empty();
+  const fs::path from = rediagnose ? fs::path(o.rediagnose) : fs::path(o.out);
+  const auto cases = stored_cases(from);
+  if (cases.empty()) {
+    fmt::print(stderr, "{}: error: {}: expected caseNNN folders with a truth.json (a bench's --out)\n", from.string(),
+               rediagnose ? "--rediagnose" : "--rescore");
     return kBadInput;
   }
-  std::sort(cases.begin(), cases.end());
   Tallies tallies;
-  for (const auto& [c, dir] : cases) {
-    // Each file read, and the case scored, or the file named with what is wrong in it.
-    fs::path file = dir / "truth.json";
+  for (const auto& [c, stored] : cases) {
+    const auto truth = read_stored_json(stored / "truth.json");
+    if (!truth) return kBadInput;
+    Case k;
     try {
-      std::ifstream truth(file);
-      const Case k = case_from_truth(nlohmann::json::parse(truth));
-      file = dir / "diagnosis.json";
-      std::ifstream diagnosis(file);
-      tallies.add(c, k, nlohmann::json::parse(diagnosis));
+      k = case_from_truth(*truth);
     } catch (const nlohmann::json::exception& e) {
-      fmt::print(stderr, "{}: error: expected the bench's {} ({})\n", file.string(), file.filename().string(),
+      fmt::print(stderr, "{}: error: expected the bench's truth.json ({})\n", (stored / "truth.json").string(),
                  e.what());
+      return kBadInput;
+    }
+    std::optional<nlohmann::json> diagnosis;
+    if (rediagnose) {
+      const fs::path log = stored / "log.csv", dir = fs::path(o.out) / stored.filename();
+      if (!fs::exists(log)) {
+        fmt::print(stderr, "{}: error: --rediagnose: the case's log is missing\n", log.string());
+        return kBadInput;
+      }
+      std::error_code error;
+      fs::create_directories(dir, error);
+      if (!error) fs::copy_file(stored / "truth.json", dir / "truth.json", fs::copy_options::overwrite_existing, error);
+      if (error) {
+        fmt::print(stderr, "{}: error: cannot write the case: {}\n", dir.string(), error.message());
+        return kBadInput;
+      }
+      diagnosis = diagnose_case(o, c, k, log, dir);
+      if (!diagnosis) return kCheckFailed;
+    } else {
+      diagnosis = read_stored_json(stored / "diagnosis.json");
+      if (!diagnosis) return kBadInput;
+    }
+    try {
+      tallies.add(c, k, *diagnosis);
+    } catch (const nlohmann::json::exception& e) {
+      const fs::path file = (rediagnose ? fs::path(o.out) / stored.filename() : stored) / "diagnosis.json";
+      fmt::print(stderr, "{}: error: expected the bench's diagnosis.json ({})\n", file.string(), e.what());
       return kBadInput;
     }
   }
@@ -558,7 +627,7 @@ int rescore_bench(const BenchOptions& o) {
 }
 
 int run_sim2real_bench(const BenchOptions& o) {
-  if (o.rescore) return rescore_bench(o);
+  if (o.rescore || !o.rediagnose.empty()) return rescore_bench(o);
   const std::vector<std::string> arms = o.arms;
   std::map<std::string, std::unique_ptr<pipeline::Derivation>> derived;
   for (const std::string& arm : arms) {
@@ -651,21 +720,9 @@ int run_sim2real_bench(const BenchOptions& o) {
     }
     std::ofstream(dir / "truth.json") << truth_json(k, so, closed).dump(2) << "\n";
 
-    // The diagnosis as its own process, on the log alone. What it is told is how the log was
-    // written, as a user knows it of their own: the closed-loop torque is the controller's
-    // command, held over each period; the open-loop torque is the model's at the row's instant.
-    const std::string command = fmt::format("{} diagnose {} {}{} --json {} > {} 2>&1", shell_quoted(self_path()),
-                                            shell_quoted(fs::path(o.robots) / fmt::format("{}.yaml", k.arm)),
-                                            shell_quoted(dir / "log.csv"), closed ? " --held-torque" : "",
-                                            shell_quoted(dir / "diagnosis.json"), shell_quoted(dir / "diagnosis.txt"));
-    const int status = std::system(command.c_str());
-    if (status != 0) {
-      fmt::print(stderr, "case {}: dyncc diagnose failed (status {}); see {}\n", c, status,
-                 (dir / "diagnosis.txt").string());
-      return kCheckFailed;
-    }
-    std::ifstream in(dir / "diagnosis.json");
-    tallies.add(c, k, nlohmann::json::parse(in));
+    const auto diagnosis = diagnose_case(o, c, k, dir / "log.csv", dir);
+    if (!diagnosis) return kCheckFailed;
+    tallies.add(c, k, *diagnosis);
   }
   tallies.write_summary(o.out);
   return kSuccess;

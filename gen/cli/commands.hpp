@@ -78,6 +78,7 @@ struct BenchOptions {
   bool closed_loop = true;  // Kraft logs at 200 Hz and above from the closed-loop simulation (dyncc-sim excite)
   std::vector<std::string> effects;  // the effects drawn from (default: every injectable one)
   bool rescore = false;              // score the cases already in `out` again (their truth.json and diagnosis.json)
+  std::string rediagnose;            // a stored bench whose logs to diagnose again into `out`, then score
 };
 int run_sim2real_bench(const BenchOptions& o);
 

@@ -125,6 +125,11 @@ void add_output_commands(CLI::App& app, int& exit_code) {
   bench_cmd->add_flag("--rescore", bench->rescore,
                       "Score the cases already in --out again (their truth.json and diagnosis.json); make and "
                       "diagnose nothing");
+  bench_cmd
+      ->add_option("--rediagnose", bench->rediagnose,
+                   "Diagnose the logs of this stored bench's cases again into --out (their truth.json copied), "
+                   "then score them; simulate nothing")
+      ->excludes("--rescore");
   bench_cmd->callback([&exit_code, bench] { exit_code = run_sim2real_bench(*bench); });
 }
 
