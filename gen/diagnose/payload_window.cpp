@@ -25,7 +25,7 @@ constexpr double kShortestUnloaded = 0.1;
 class WindowFits {
  public:
   WindowFits(const Dataset& d, const Eigen::MatrixXd& columns, const Eigen::VectorXd& residual,
-             const Eigen::VectorXd& weight, Eigen::Index begin, Eigen::Index end)
+             const Eigen::VectorXd& weight, const Eigen::VectorXd& scored, Eigen::Index begin, Eigen::Index end)
       : begin_(begin), rows_(d.rows()), k_(columns.cols()) {
     const Eigen::Index n = d.n;
     normal_.assign(static_cast<std::size_t>(end - begin + 1), Eigen::MatrixXd::Zero(k_, k_));
@@ -34,9 +34,10 @@ class WindowFits {
     for (Eigen::Index a = begin; a < end; ++a) {
       const auto block = columns.middleRows(a * n, n);
       const auto r = residual.segment(a * n, n);
+      const Eigen::VectorXd w = w2.cwiseProduct(scored.segment(a * n, n));
       const auto s = static_cast<std::size_t>(a - begin);
-      normal_[s + 1] = normal_[s] + block.transpose() * w2.asDiagonal() * block;
-      right_[s + 1] = right_[s] + block.transpose() * w2.asDiagonal() * r;
+      normal_[s + 1] = normal_[s] + block.transpose() * w.asDiagonal() * block;
+      right_[s + 1] = right_[s] + block.transpose() * w.asDiagonal() * r;
     }
   }
 
@@ -90,7 +91,8 @@ class WindowFits {
 }  // namespace
 
 std::optional<PayloadWindow> find_payload_window(const Dataset& d, const Eigen::MatrixXd& columns,
-                                                 const Eigen::VectorXd& residual, const Eigen::VectorXd& weight) {
+                                                 const Eigen::VectorXd& residual, const Eigen::VectorXd& weight,
+                                                 const Eigen::VectorXd& scored) {
   std::optional<PayloadWindow> best;
   const Eigen::Index rows = d.rows();
   for (Eigen::Index begin = 0; begin < rows;) {
@@ -100,7 +102,7 @@ std::optional<PayloadWindow> find_payload_window(const Dataset& d, const Eigen::
     const Eigen::Index length = end - begin;
     const Eigen::Index step = length / kGridPoints;
     if (step >= 2) {
-      const WindowFits fits(d, columns, residual, weight, begin, end);
+      const WindowFits fits(d, columns, residual, weight, scored, begin, end);
       const auto shortest = static_cast<Eigen::Index>(kShortestShare * static_cast<double>(length));
       const auto unloaded = static_cast<Eigen::Index>(kShortestUnloaded * static_cast<double>(length));
       auto allowed = [&](Eigen::Index a, Eigen::Index b) {
@@ -111,7 +113,8 @@ std::optional<PayloadWindow> find_payload_window(const Dataset& d, const Eigen::
       auto consider = [&](Eigen::Index a, Eigen::Index b) {
         if (!allowed(a, b)) return;
         const double x = fits.explained(a, b);
-        if (x > value) {
+        // Of windows that explain the same (edges anywhere in rows not scored), the narrowest.
+        if (x > value || (x == value && b - a < b_best - a_best)) {
           value = x;
           a_best = a;
           b_best = b;

@@ -23,9 +23,12 @@ struct PayloadWindow {
 
 /// The best proper sub-window (not the whole log: that is the constant payload) of any log, for
 /// the payload columns `columns` (analysis rows, A*n x k) against `residual` (A*n), joints
-/// weighted by `weight` (n). Empty when no log has enough rows for a window.
+/// weighted by `weight` (n), on the stacked rows where `scored` (A*n) is 1. Of windows that
+/// explain the same, the narrowest: an edge that could lie anywhere in rows not scored lies at
+/// their end nearest the window's inside. Empty when no log has enough rows for a window.
 std::optional<PayloadWindow> find_payload_window(const Dataset& d, const Eigen::MatrixXd& columns,
-                                                 const Eigen::VectorXd& residual, const Eigen::VectorXd& weight);
+                                                 const Eigen::VectorXd& residual, const Eigen::VectorXd& weight,
+                                                 const Eigen::VectorXd& scored);
 
 /// The payload's columns (evaluation rows, S*n x k) kept only while the load is carried.
 Eigen::MatrixXd gated(const Dataset& d, const Eigen::MatrixXd& columns, const PayloadWindow& window);
