@@ -537,13 +537,18 @@ std::vector<std::pair<int, fs::path>> stored_cases(const fs::path& bench) {
   return cases;
 }
 
-// A stored JSON file, or the file named with what is wrong in it (nullopt).
+// A stored file that is not what the bench writes, named with what is wrong in it.
+void say_not_the_benchs(const fs::path& file, const nlohmann::json::exception& e) {
+  fmt::print(stderr, "{}: error: expected the bench's {} ({})\n", file.string(), file.filename().string(), e.what());
+}
+
+// A stored JSON file, or nullopt (said on stderr) when it does not parse.
 std::optional<nlohmann::json> read_stored_json(const fs::path& file) {
   try {
     std::ifstream in(file);
     return nlohmann::json::parse(in);
   } catch (const nlohmann::json::exception& e) {
-    fmt::print(stderr, "{}: error: expected the bench's {} ({})\n", file.string(), file.filename().string(), e.what());
+    say_not_the_benchs(file, e);
     return std::nullopt;
   }
 }
@@ -573,7 +578,7 @@ std::optional<nlohmann::json> diagnose_case(const BenchOptions& o, int c, const 
 // --rediagnose FROM: the logs of FROM's cases diagnosed again by this binary into --out (each
 // case's truth.json copied, its log read where it is), then scored: a change of the diagnosis,
 // checked on stored benches without simulating them again, FROM's own diagnoses kept to compare.
-int rescore_bench(const BenchOptions& o) {
+int score_stored_bench(const BenchOptions& o) {
   const bool rediagnose = !o.rediagnose.empty();
   const fs::path from = rediagnose ? fs::path(o.rediagnose) : fs::path(o.out);
   const auto cases = stored_cases(from);
@@ -590,13 +595,13 @@ int rescore_bench(const BenchOptions& o) {
     try {
       k = case_from_truth(*truth);
     } catch (const nlohmann::json::exception& e) {
-      fmt::print(stderr, "{}: error: expected the bench's truth.json ({})\n", (stored / "truth.json").string(),
-                 e.what());
+      say_not_the_benchs(stored / "truth.json", e);
       return kBadInput;
     }
+    const fs::path dir = rediagnose ? fs::path(o.out) / stored.filename() : stored;  // where its diagnosis is
     std::optional<nlohmann::json> diagnosis;
     if (rediagnose) {
-      const fs::path log = stored / "log.csv", dir = fs::path(o.out) / stored.filename();
+      const fs::path log = stored / "log.csv";
       if (!fs::exists(log)) {
         fmt::print(stderr, "{}: error: --rediagnose: the case's log is missing\n", log.string());
         return kBadInput;
@@ -611,14 +616,13 @@ int rescore_bench(const BenchOptions& o) {
       diagnosis = diagnose_case(o, c, k, log, dir);
       if (!diagnosis) return kCheckFailed;
     } else {
-      diagnosis = read_stored_json(stored / "diagnosis.json");
+      diagnosis = read_stored_json(dir / "diagnosis.json");
       if (!diagnosis) return kBadInput;
     }
     try {
       tallies.add(c, k, *diagnosis);
     } catch (const nlohmann::json::exception& e) {
-      const fs::path file = (rediagnose ? fs::path(o.out) / stored.filename() : stored) / "diagnosis.json";
-      fmt::print(stderr, "{}: error: expected the bench's diagnosis.json ({})\n", file.string(), e.what());
+      say_not_the_benchs(dir / "diagnosis.json", e);
       return kBadInput;
     }
   }
@@ -627,7 +631,7 @@ int rescore_bench(const BenchOptions& o) {
 }
 
 int run_sim2real_bench(const BenchOptions& o) {
-  if (o.rescore || !o.rediagnose.empty()) return rescore_bench(o);
+  if (o.rescore || !o.rediagnose.empty()) return score_stored_bench(o);
   const std::vector<std::string> arms = o.arms;
   std::map<std::string, std::unique_ptr<pipeline::Derivation>> derived;
   for (const std::string& arm : arms) {

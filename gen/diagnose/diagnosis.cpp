@@ -218,15 +218,15 @@ Diagnosis diagnose(const Dataset& d, const pipeline::Derivation& derivation) {
   out.weight = weight;
   out.folds = folds_sharing_bursts(r0, weight, n, d.step);
   const Folds& folds = out.folds;
+  out.away = away_from_zero_velocity(d);
+  const Eigen::VectorXd& away = out.away;
+  StaticHolds holds{in_long_rests(d, away), std::vector<bool>(static_cast<std::size_t>(n), false)};
   std::deque<Effect> effects;  // stable addresses: candidates point at their effect; a search adds to it
-  for (Effect& e : candidate_effects(d, derivation)) effects.push_back(std::move(e));
+  for (Effect& e : candidate_effects(d, derivation, holds.rests)) effects.push_back(std::move(e));
   const ContactRows contacts(d, derivation);  // the contact's grid here, its search at the first step
   if (contacts.valid()) {
     for (const ContactPoint& at : contacts.grid()) effects.push_back(contacts.effect(at));
   }
-  out.away = away_from_zero_velocity(d);
-  const Eigen::VectorXd& away = out.away;
-  StaticHolds holds{in_long_rests(d, away), std::vector<bool>(static_cast<std::size_t>(n), false)};
   out.scored = Eigen::VectorXd::Ones(r0.size());
 
   std::deque<Effect> narrowed_effects;  // stable addresses: candidates point at their effect

@@ -77,7 +77,8 @@ int payload_link(const pipeline::Derivation& derivation) {
   return best;
 }
 
-std::vector<Effect> candidate_effects(const Dataset& d, const pipeline::Derivation& derivation) {
+std::vector<Effect> candidate_effects(const Dataset& d, const pipeline::Derivation& derivation,
+                                      const Eigen::VectorXd& rests) {
   std::vector<Effect> out;
   const Eigen::Index rows = d.samples() * d.n;
 
@@ -160,7 +161,7 @@ std::vector<Effect> candidate_effects(const Dataset& d, const pipeline::Derivati
   shifted("backlash", "width", Reading::as_is, [&](Eigen::Index s, Eigen::Index j) {
     return turning[j] >= kBacklashTurnOver ? 0.5 * std::tanh(carried(s, j) / kTorqueSignScale) : 0.0;
   });
-  add_payload_effects(d, derivation, out);  // conditioned as they are made (a load's point is fitted)
+  add_payload_effects(d, derivation, rests, out);  // conditioned as they are made (a load's point is fitted)
   return out;
 }
 

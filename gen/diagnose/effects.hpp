@@ -61,7 +61,9 @@ int payload_link(const pipeline::Derivation& derivation);
 /// Every candidate for the data (friction, payload, delay, gain, offset, compliance, backlash,
 /// rotor inertia, and the description's own inertial parameters), built on the evaluation rows
 /// and conditioned into the analysis rows. The contact's are ContactRows' (contact_effect.hpp):
-/// the diagnosis keeps its geometry for the search it runs from them.
-std::vector<Effect> candidate_effects(const Dataset& data, const pipeline::Derivation& derivation);
+/// the diagnosis keeps its geometry for the search it runs from them. `rests` (A*n, 1 in a
+/// joint's holds: in_long_rests) are left out of the payload window's search.
+std::vector<Effect> candidate_effects(const Dataset& data, const pipeline::Derivation& derivation,
+                                      const Eigen::VectorXd& rests);
 
 }  // namespace dyncc::diagnose

@@ -3,7 +3,6 @@
 #include <array>
 #include <cmath>
 
-#include "diagnose/long_rests.hpp"
 #include "diagnose/payload_window.hpp"
 
 namespace dyncc::diagnose {
@@ -109,7 +108,8 @@ Effect payload_effect(const Eigen::MatrixXd& conditioned, const Eigen::Vector3d&
 
 }  // namespace
 
-void add_payload_effects(const Dataset& d, const pipeline::Derivation& derivation, std::vector<Effect>& out) {
+void add_payload_effects(const Dataset& d, const pipeline::Derivation& derivation, const Eigen::VectorXd& rests,
+                         std::vector<Effect>& out) {
   const Eigen::MatrixXd all = standard_columns(d, derivation);
   if (all.size() == 0) return;
   const Eigen::VectorXd weight = torque_weights(analysis_torque_rms(d));
@@ -122,7 +122,7 @@ void add_payload_effects(const Dataset& d, const pipeline::Derivation& derivatio
   // load's torque or keep one that looks like it (a hold from 8 s to a pick-up at 17 s on a MuJoCo
   // tele-operation log put the pick-up at 7.6 s and read a 10.4 g load as 6.3 g; left out, 17.5 s
   // and 9.97 g: blind seed 443 case 57).
-  const Eigen::VectorXd scored = 1.0 - in_long_rests(d, away_from_zero_velocity(d)).array();
+  const Eigen::VectorXd scored = 1.0 - rests.array();
   const auto window = find_payload_window(d, out.back().columns, d.residual, weight, scored);
   if (!window) return;
   const Eigen::MatrixXd carried = d.condition(gated(d, all, *window));

@@ -14,7 +14,10 @@
 
 namespace dyncc::diagnose {
 
-/// Appends the payload effects (conditioned, in the analysis rows) for the robot's payload link.
-void add_payload_effects(const Dataset& d, const pipeline::Derivation& derivation, std::vector<Effect>& out);
+/// Appends the payload effects (conditioned, in the analysis rows) for the robot's payload link;
+/// the window of a load carried for a while is searched outside `rests` (A*n, 1 in a joint's
+/// holds: in_long_rests).
+void add_payload_effects(const Dataset& d, const pipeline::Derivation& derivation, const Eigen::VectorXd& rests,
+                         std::vector<Effect>& out);
 
 }  // namespace dyncc::diagnose
