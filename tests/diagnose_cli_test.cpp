@@ -654,6 +654,35 @@ TEST(DiagnoseCommand, ASelectedEffectImplausibleInTheJointFitIsSaidToBe) {
   EXPECT_TRUE(found) << d["selected"].dump();
 }
 
+// Case 1 of the blind seed 457: a PUMA 560 open-loop Fourier log at 1 kHz whose joint 5 has a
+// torque gain of 1.11. That joint's torque is mostly its drive's 0.85 N m Coulomb friction, so
+// over all rows a Stribeck friction at its smallest velocity scale explained more of the joint
+// (88 %) than the gain (81 %), by fitting how the model's friction turns over at reversals; a
+// Coulomb friction took the joint from that Stribeck friction, the Stribeck friction from the
+// Coulomb friction, and nothing was named (`unknown`). Where the joint moves the gain leaves a
+// sixteenth of what the friction does, and it keeps the joint.
+TEST(DiagnoseCommand, AGainOfAJointWhoseTorqueIsMostlyFrictionIsNamedByWhereTheJointMoves) {
+  diagnose::SyntheticOptions options;
+  options.rate = 1000;
+  options.seed = 457001;
+  const auto log = output_path("gain_of_a_friction_joint") / "log.csv";
+  std::filesystem::create_directories(log.parent_path());
+  const double gain = 1.11;
+  diagnose::write_synthetic_log(puma_derivation(), {{.effect = "torque_gain", .joint = 4, .size = gain}}, options, log);
+  const auto json = log.parent_path() / "diagnosis.json";
+  const DynccRun run =
+      run_dyncc("diagnose " + quoted(std::filesystem::path(DYNCC_SOURCE_DIR) / "robots" / "puma560.yaml") + " " +
+                quoted(log) + " --json " + quoted(json));
+  ASSERT_EQ(run.exit_code, 0) << run.errors;
+  std::ifstream in(json);
+  const nlohmann::json d = nlohmann::json::parse(in);
+  EXPECT_EQ(d["verdict"]["effect"].get<std::string>().substr(0, 11), "torque_gain") << d["verdict"].dump();
+  EXPECT_EQ(d["verdict"]["joints"], nlohmann::json::array({5})) << d["verdict"].dump();
+  std::map<std::string, double> fitted = fitted_of(d);
+  ASSERT_TRUE(fitted.count("gain5")) << d["selected"].dump();
+  EXPECT_NEAR(fitted["gain5"], gain, 0.1 * (gain - 1.0));
+}
+
 // A table `depth` m above the lowest point of the hook in a run of dyncc excite, diagnosed; the
 // verdict must be the contact.
 nlohmann::json diagnosed_contact(const std::string& name, double depth, const std::string& run) {

@@ -256,46 +256,8 @@ Diagnosis diagnose(const Dataset& d, const pipeline::Derivation& derivation) {
     // explains beyond the other is immaterial (below kMaterial of the torque RMS); of acceptable
     // equals the fewest columns win, and equals whose columns do not contain the chosen ones are
     // alternatives ("A or B") when they are acceptable on their own.
-    // The joints of a per-joint effect where it IS: a joint whose part another per-joint effect
-    // explains better on its own (viscous friction of joint 3 that Coulomb columns of joint 3 half
-    // absorb) is left for that effect's turn; the columns of the remaining joints are accepted.
-    // ... and a joint that a simpler per-joint effect (fewer columns there: Coulomb against
-    // Stribeck) explains as well is left for that one: a Coulomb friction of joint 2 is not a
-    // Stribeck friction of joints 2 and 5 because joint 5 has one.
     auto own_joints_of = [&](const Candidate& chosen, const RankedEffect& r, bool* lost_to_simpler = nullptr) {
-      std::vector<int> kept;
-      for (const int joint : r.joints) {
-        const Effect mine_effect = narrowed(*chosen.effect, {joint - 1});
-        const Candidate mine = evaluate(mine_effect, accepted, r0, baseline, weight, folds, n, &out.scored);
-        bool beaten = false;
-        for (const Effect& e : effects) {
-          // An effect whose fit over the arm is implausible never takes its turn (a joint left for
-          // it stays unexplained: the TX40's joint 2 was left for springs whose wrist is 0.5 rad
-          // soft).
-          const auto whole = best.find(e.name);
-          if (beaten || e.family == chosen.effect->family || !per_joint(e) ||
-              std::find(taken.begin(), taken.end(), e.family) != taken.end() ||
-              (whole != best.end() && !whole->second.plausible)) {
-            continue;
-          }
-          const Effect theirs = without_fitted(narrowed(e, {joint - 1}), fitted);
-          if (theirs.columns.cols() == 0) continue;
-          const Candidate other = evaluate_point(theirs, accepted, r0, baseline, weight, folds, away, n, &out.scored);
-          const bool better = better_by_the_margin(other, mine);
-          const bool simpler_and_as_good = theirs.columns.cols() < mine_effect.columns.cols() &&
-                                           !clearly_more(mine, other) && !better_by_the_margin(mine, other);
-          // ... nor one that explains nothing where the velocity is away from zero, where it must
-          // (a spring of the PUMA's joint 1 explained 38 % of a log whose joint 1 has a viscous
-          // friction of 4.3, all of it at reversals: every friction and the gain gave joint 1 to
-          // it, and a contact of a second, smaller effect was named alone; blind seed 149 case 34).
-          beaten = (better || simpler_and_as_good) && other.low > 0.0 &&
-                   (!judged_away_from_zero(theirs) || other.away_shrink >= kAcceptShrink) &&
-                   plausible(describe(other, before, accepted.cols(), out.gap.torque_rms), derivation, out.gap);
-          if (beaten && simpler_and_as_good && lost_to_simpler != nullptr) *lost_to_simpler = true;  // as good, simpler
-        }
-        if (!beaten) kept.push_back(joint - 1);
-      }
-      return kept;
+      return own_joints_of_effect(chosen, r, step_state, effects, best, taken, fitted, out.scored, lost_to_simpler);
     };
     // The leading candidate, then parsimony; one that turns out to explain nothing of its own
     // (no joint left once narrowed) gives way to the next acceptable one.
