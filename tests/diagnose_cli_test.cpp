@@ -238,6 +238,22 @@ std::map<std::string, double> fitted_of(const nlohmann::json& diagnosis) {
   return fitted;
 }
 
+// An open-loop PUMA 560 log of the model with `effects` injected (as the bench makes its PUMA
+// cases, whose seeds `options` repeats), diagnosed by `dyncc diagnose` against the description.
+nlohmann::json diagnose_synthetic_puma(const std::string& name, const std::vector<diagnose::Injection>& effects,
+                                       const diagnose::SyntheticOptions& options) {
+  const auto log = output_path(name) / "log.csv";
+  std::filesystem::create_directories(log.parent_path());
+  diagnose::write_synthetic_log(puma_derivation(), effects, options, log);
+  const auto json = log.parent_path() / "diagnosis.json";
+  const DynccRun run =
+      run_dyncc("diagnose " + quoted(std::filesystem::path(DYNCC_SOURCE_DIR) / "robots" / "puma560.yaml") + " " +
+                quoted(log) + " --json " + quoted(json));
+  EXPECT_EQ(run.exit_code, 0) << run.errors;
+  std::ifstream in(json);
+  return nlohmann::json::parse(in);
+}
+
 // Without a hidden effect the only gap is what the MuJoCo plant and the description differ by (a
 // few % of the base joint's torque). Its shape once fitted a 333 N m/rad spring on joint 1 that
 // gives way 0.9 mrad, under the 12-bit potentiometers' 1.5 mrad step: a shift the sensor cannot
@@ -626,20 +642,11 @@ TEST(DiagnoseCommand, ASelectedEffectImplausibleInTheJointFitIsSaidToBe) {
   diagnose::SyntheticOptions options;
   options.rate = 200;
   options.seed = 433019;
-  const auto log = output_path("implausible_contact") / "log.csv";
-  std::filesystem::create_directories(log.parent_path());
-  const auto& puma = puma_derivation();
-  diagnose::write_synthetic_log(puma,
-                                {{.effect = "contact", .joint = 4, .size = 0.9544207937674577},
-                                 {.effect = "viscous_friction", .joint = 4, .size = 0.2608143282636239}},
-                                options, log);
-  const auto json = log.parent_path() / "diagnosis.json";
-  const DynccRun run =
-      run_dyncc("diagnose " + quoted(std::filesystem::path(DYNCC_SOURCE_DIR) / "robots" / "puma560.yaml") + " " +
-                quoted(log) + " --json " + quoted(json));
-  ASSERT_EQ(run.exit_code, 0) << run.errors;
-  std::ifstream in(json);
-  const nlohmann::json d = nlohmann::json::parse(in);
+  const nlohmann::json d =
+      diagnose_synthetic_puma("implausible_contact",
+                              {{.effect = "contact", .joint = 4, .size = 0.9544207937674577},
+                               {.effect = "viscous_friction", .joint = 4, .size = 0.2608143282636239}},
+                              options);
   bool found = false;
   for (const auto& r : d["selected"]) {
     if (r["effect"].get<std::string>().rfind("contact", 0) != 0) continue;
@@ -665,17 +672,9 @@ TEST(DiagnoseCommand, AGainOfAJointWhoseTorqueIsMostlyFrictionIsNamedByWhereTheJ
   diagnose::SyntheticOptions options;
   options.rate = 1000;
   options.seed = 457001;
-  const auto log = output_path("gain_of_a_friction_joint") / "log.csv";
-  std::filesystem::create_directories(log.parent_path());
   const double gain = 1.11;
-  diagnose::write_synthetic_log(puma_derivation(), {{.effect = "torque_gain", .joint = 4, .size = gain}}, options, log);
-  const auto json = log.parent_path() / "diagnosis.json";
-  const DynccRun run =
-      run_dyncc("diagnose " + quoted(std::filesystem::path(DYNCC_SOURCE_DIR) / "robots" / "puma560.yaml") + " " +
-                quoted(log) + " --json " + quoted(json));
-  ASSERT_EQ(run.exit_code, 0) << run.errors;
-  std::ifstream in(json);
-  const nlohmann::json d = nlohmann::json::parse(in);
+  const nlohmann::json d = diagnose_synthetic_puma("gain_of_a_friction_joint",
+                                                   {{.effect = "torque_gain", .joint = 4, .size = gain}}, options);
   EXPECT_EQ(d["verdict"]["effect"].get<std::string>().substr(0, 11), "torque_gain") << d["verdict"].dump();
   EXPECT_EQ(d["verdict"]["joints"], nlohmann::json::array({5})) << d["verdict"].dump();
   std::map<std::string, double> fitted = fitted_of(d);
@@ -694,26 +693,42 @@ TEST(DiagnoseCommand, AJointIsNotKeptByWhereItMovesBesideAcceptedEffects) {
   options.rate = 500;
   options.seed = 353004;
   options.payload_on = 8.575436485072947;
-  const auto log = output_path("friction_beside_a_payload") / "log.csv";
-  std::filesystem::create_directories(log.parent_path());
   const double fc = 0.20378649938011392;
-  diagnose::write_synthetic_log(puma_derivation(),
-                                {{.effect = "coulomb_friction", .joint = 4, .size = fc},
-                                 {.effect = "payload", .joint = 4, .size = 0.28133894619224553}},
-                                options, log);
-  const auto json = log.parent_path() / "diagnosis.json";
-  const DynccRun run =
-      run_dyncc("diagnose " + quoted(std::filesystem::path(DYNCC_SOURCE_DIR) / "robots" / "puma560.yaml") + " " +
-                quoted(log) + " --json " + quoted(json));
-  ASSERT_EQ(run.exit_code, 0) << run.errors;
-  std::ifstream in(json);
-  const nlohmann::json d = nlohmann::json::parse(in);
+  const nlohmann::json d = diagnose_synthetic_puma("friction_beside_a_payload",
+                                                   {{.effect = "coulomb_friction", .joint = 4, .size = fc},
+                                                    {.effect = "payload", .joint = 4, .size = 0.28133894619224553}},
+                                                   options);
   EXPECT_EQ(d["verdict"]["effect"], "coulomb_friction") << d["verdict"].dump();
   EXPECT_EQ(d["verdict"]["joints"], nlohmann::json::array({5})) << d["verdict"].dump();
   std::map<std::string, double> fitted = fitted_of(d);
   EXPECT_FALSE(fitted.count("ia5")) << d["selected"].dump();
   ASSERT_TRUE(fitted.count("fc5")) << d["selected"].dump();
   EXPECT_NEAR(fitted["fc5"], fc, 0.1 * fc);
+}
+
+// Case 34 of the blind seed 463: a PUMA 560 open-loop Fourier log at 500 Hz with a Coulomb
+// friction of joint 4 (0.119 N m) and a torque gain of 1.055 on joint 6. Both joints' torques are
+// mostly their drives' friction, so one gain of joints 4 and 6 led the first step (97.3 % held
+// out, gain4 0.911 standing in for the friction), and on joint 4 the Coulomb friction, as good
+// there (72.4 % to 70.9 %) but not better by the margin, did not take the joint. Where joint 4
+// moves the friction leaves clearly less than the gain in every fold: it takes the joint, and the
+// gain is named on joint 6 at the next step.
+TEST(DiagnoseCommand, AFrictionAsGoodAsAGainTakesTheJointWhereItLeavesLessWhereItMoves) {
+  diagnose::SyntheticOptions options;
+  options.rate = 500;
+  options.seed = 463034;
+  const double fc = 0.11930452726275238, gain = 1.055;
+  const nlohmann::json d = diagnose_synthetic_puma("friction_beside_a_gain",
+                                                   {{.effect = "coulomb_friction", .joint = 3, .size = fc},
+                                                    {.effect = "torque_gain", .joint = 5, .size = gain}},
+                                                   options);
+  EXPECT_EQ(d["verdict"]["effect"], "coulomb_friction") << d["verdict"].dump();
+  EXPECT_EQ(d["verdict"]["joints"], nlohmann::json::array({4})) << d["verdict"].dump();
+  std::map<std::string, double> fitted = fitted_of(d);
+  EXPECT_FALSE(fitted.count("gain4")) << d["selected"].dump();
+  ASSERT_TRUE(fitted.count("fc4") && fitted.count("gain6")) << d["selected"].dump();
+  EXPECT_NEAR(fitted["fc4"], fc, 0.1 * fc);
+  EXPECT_NEAR(fitted["gain6"], gain, 0.1 * (gain - 1.0));
 }
 
 // A table `depth` m above the lowest point of the hook in a run of dyncc excite, diagnosed; the

@@ -162,12 +162,20 @@ std::vector<int> own_joints_of_effect(const Candidate& chosen, const RankedEffec
       // ... nor one that explains nothing where the velocity is away from zero, where it must
       // (a spring of the PUMA's joint 1 explained 38 % of a log whose joint 1 has a viscous
       // friction of 4.3, all of it at reversals: every friction and the gain gave joint 1 to
-      // it, and a contact of a second, smaller effect was named alone; blind seed 149 case 34),
-      // nor one that leaves clearly more than `mine` where the joint moves (kept_where_moving).
-      beaten = (better || simpler_and_as_good) && other.low > 0.0 &&
-               (!judged_away_from_zero(theirs) || other.away_shrink >= kAcceptShrink) &&
-               plausible(describe(other, s.before, s.accepted.cols(), s.gap.torque_rms), s.derivation, s.gap) &&
-               !kept_where_moving(mine, other, joint - 1, s);
+      // it, and a contact of a second, smaller effect was named alone; blind seed 149 case 34).
+      const bool may_take =
+          other.low > 0.0 && (!judged_away_from_zero(theirs) || other.away_shrink >= kAcceptShrink) &&
+          plausible(describe(other, s.before, s.accepted.cols(), s.gap.torque_rms), s.derivation, s.gap);
+      // Where the joint moves (closer_where_the_joint_moves): one that leaves clearly less there
+      // than `mine` takes the joint if `mine` is not better by the margin over all rows (the
+      // PUMA's joints 4 and 6, their torques mostly their drives' friction, had a Coulomb friction
+      // of joint 4 and a gain of joint 6 named as one gain of both, gain4 0.911: blind seed 463
+      // case 34), and one that leaves clearly more there does not take it even where it is better
+      // over all rows.
+      beaten = may_take &&
+               (better || simpler_and_as_good ||
+                (!better_by_the_margin(mine, other) && closer_where_the_joint_moves(other, mine, joint - 1, s))) &&
+               !closer_where_the_joint_moves(mine, other, joint - 1, s);
       if (beaten && simpler_and_as_good && lost_to_simpler != nullptr) *lost_to_simpler = true;
     }
     if (!beaten) kept.push_back(joint - 1);
@@ -284,29 +292,29 @@ double ratio_where_moving(const Effect& a, const Effect& b) {
 
 }  // namespace
 
-// Whether `mine` keeps `joint` (0-based) from a rival `theirs` that explains more of it over all
-// rows: the two are compared where the joint moves (compared_where_moving) and `mine` may be named
-// there and leaves clearly less there. Over all rows a friction at its smallest velocity scale is
-// mostly compared on the rows near reversals, where the model's own friction turns over otherwise
-// than the plant's: the PUMA's joint 5, whose torque is mostly its 0.85 N m Coulomb friction, had a
-// torque gain of 1.11 (read 1.106, 81 % held out) that a Stribeck friction at 0.02 rad/s took the
-// joint from (88 %), a Coulomb friction took it from the Stribeck's, the Stribeck from the
-// Coulomb's, and nothing was named; where the joint moves the gain leaves a sixteenth of what that
-// Stribeck friction does (blind seed 457 case 1). Only at the first step: beside an accepted
-// effect that has taken what a friction does where its joint moves, what is left of that friction
-// is at the reversals (a gain of joints 2, 3 and 5 stood in for a Coulomb friction of the PUMA's
-// joint 5 beside a payload; a rotor inertia of joint 5 that left less than the friction where the
-// joint moves kept the joint at the third step, and the joint fit then read a gain of 0.84 and a
-// negative rotor inertia where the Coulomb friction had been named: blind seed 353 case 4).
-bool kept_where_moving(const Candidate& mine, const Candidate& theirs, int joint, const StepState& s) {
+// Whether `a` leaves clearly less than `b` where `joint` (0-based) moves, at the first step: the
+// two are of the kinds compared where a joint moves (compared_where_moving), `a` may be named there
+// and leaves clearly less there, by closer_where_moving's test. Over all rows a friction and
+// another kind are compared mostly on the rows near reversals, where the model's own friction
+// turns over otherwise than the plant's: the PUMA's joint 5, whose torque is mostly its 0.85 N m
+// Coulomb friction, had a torque gain of 1.11 (read 1.106, 81 % held out) that a Stribeck friction
+// at 0.02 rad/s took the joint from (88 %), a Coulomb friction took it from the Stribeck's, the
+// Stribeck from the Coulomb's, and nothing was named; where the joint moves the gain leaves a
+// sixteenth of what that Stribeck friction does (blind seed 457 case 1). Only at the first step:
+// beside an accepted effect that has taken what a friction does where its joint moves, what is
+// left of that friction is at the reversals (a gain of joints 2, 3 and 5 stood in for a Coulomb
+// friction of the PUMA's joint 5 beside a payload; a rotor inertia of joint 5 that left less than
+// the friction where the joint moves kept the joint at the third step, and the joint fit then read
+// a gain of 0.84 and a negative rotor inertia where the Coulomb friction had been named: blind
+// seed 353 case 4).
+bool closer_where_the_joint_moves(const Candidate& a, const Candidate& b, int joint, const StepState& s) {
   if (s.accepted.cols() > 0) return false;
-  if (!compared_where_moving(*mine.effect, *theirs.effect) || !may_lead_where_moving(mine, s)) return false;
-  Candidate moving = mine;  // only for the folds in which the joint moves
+  if (!compared_where_moving(*a.effect, *b.effect) || !may_lead_where_moving(a, s)) return false;
+  Candidate moving = a;  // only for the folds in which the joint moves
   set_away_interval(moving, s.baseline, s.weight, s.away, {joint}, s.before.size());
   const std::vector<int> joints{joint};
-  return clearly_less(left_where_moving(mine, joints, moving.away_folds, s),
-                      left_where_moving(theirs, joints, moving.away_folds, s),
-                      ratio_where_moving(*mine.effect, *theirs.effect));
+  return clearly_less(left_where_moving(a, joints, moving.away_folds, s),
+                      left_where_moving(b, joints, moving.away_folds, s), ratio_where_moving(*a.effect, *b.effect));
 }
 
 // Of two per-joint effects that explain a step alike (as_good_as its leader) on a joint in common
