@@ -172,10 +172,11 @@ std::vector<int> own_joints_of_effect(const Candidate& chosen, const RankedEffec
       // of joint 4 and a gain of joint 6 named as one gain of both, gain4 0.911: blind seed 463
       // case 34), and one that leaves clearly more there does not take it even where it is better
       // over all rows.
-      beaten = may_take &&
-               (better || simpler_and_as_good ||
-                (!better_by_the_margin(mine, other) && closer_where_the_joint_moves(other, mine, joint - 1, s))) &&
-               !closer_where_the_joint_moves(mine, other, joint - 1, s);
+      // (One that leaves clearly less there is never also clearly more: the second test is spared.)
+      const bool theirs_closer =
+          may_take && !better_by_the_margin(mine, other) && closer_where_the_joint_moves(other, mine, joint - 1, s);
+      beaten = may_take && (better || simpler_and_as_good || theirs_closer) &&
+               (theirs_closer || !closer_where_the_joint_moves(mine, other, joint - 1, s));
       if (beaten && simpler_and_as_good && lost_to_simpler != nullptr) *lost_to_simpler = true;
     }
     if (!beaten) kept.push_back(joint - 1);
