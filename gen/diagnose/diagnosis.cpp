@@ -6,6 +6,7 @@
 
 #include "diagnose/fold_plan.hpp"
 #include "diagnose/long_rests.hpp"
+#include "diagnose/payload.hpp"
 #include "diagnose/plausibility.hpp"
 #include "diagnose/regime_error.hpp"
 #include "diagnose/selection.hpp"
@@ -239,6 +240,14 @@ Diagnosis diagnose(const Dataset& d, const pipeline::Derivation& derivation) {
   std::vector<std::vector<StepAlternative>> step_alternatives;  // each step's per-joint "or" effects
   for (int step = 0; step < kMaxEffects; ++step) {
     const Eigen::VectorXd before = joint_rms(baseline, n);
+    // A load not accepted yet is placed again beside the accepted effects, which took up the part
+    // of its torque they share with it (payload.hpp; blind seed 443 case 9: a gain of the load's
+    // joint). Its earlier placings stay candidates too.
+    if (step > 0 && std::find(taken.begin(), taken.end(), "payload") == taken.end()) {
+      std::vector<Effect> placed;
+      add_payload_effects(d, derivation, holds.rests, r0, accepted, placed);
+      for (Effect& e : placed) effects.push_back(std::move(e));
+    }
     const StepState step_state{accepted, r0, baseline, weight, folds, away, before, out.gap, derivation};
     Decided decided;  // what the rows where a joint moves told apart (closer_where_moving)
     std::map<std::string, Candidate> best =

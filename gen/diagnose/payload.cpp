@@ -57,20 +57,24 @@ std::array<bool, 3> resolved_axes(const Eigen::MatrixXd& columns, const Eigen::V
   return out;
 }
 
-// The point of a load from conditioned standard columns: fixed-point passes of the weighted fit,
-// along the resolved axes (the others stay 0).
-Eigen::Vector3d load_point(const Dataset& d, const Eigen::MatrixXd& conditioned, const Eigen::VectorXd& weight,
+// The point of a load from conditioned standard columns: fixed-point passes of the weighted fit
+// (beside the `fixed` columns, the effects accepted before it), along the resolved axes (the
+// others stay 0).
+Eigen::Vector3d load_point(const Eigen::MatrixXd& conditioned, const Eigen::VectorXd& residual,
+                           const Eigen::MatrixXd& fixed, const Eigen::VectorXd& weight,
                            const std::array<bool, 3>& resolved) {
   const Eigen::VectorXd w = stacked_weights(weight, conditioned.rows());
   Eigen::Vector3d c = Eigen::Vector3d::Zero();
   for (int pass = 0; pass < kPointPasses; ++pass) {
-    Eigen::MatrixXd a = w.asDiagonal() * point_mass(conditioned, c);
+    Eigen::MatrixXd a(conditioned.rows(), 4 + fixed.cols());
+    a << point_mass(conditioned, c), fixed;
+    a = w.asDiagonal() * a;
     for (std::size_t k = 0; k < 3; ++k) {
       if (!resolved[k]) a.col(static_cast<Eigen::Index>(k) + 1).setZero();
     }
-    const Eigen::VectorXd theta = a.colPivHouseholderQr().solve(w.asDiagonal() * d.residual);
+    const Eigen::VectorXd theta = a.colPivHouseholderQr().solve(w.asDiagonal() * residual);
     if (!(theta[0] > 0)) return Eigen::Vector3d::Zero();  // no load to place
-    const Eigen::Vector3d next = theta.tail<3>() / theta[0];
+    const Eigen::Vector3d next = theta.segment<3>(1) / theta[0];
     if (!next.allFinite() || next.norm() > kFarthestPoint) return c;
     c = next;
   }
@@ -109,24 +113,24 @@ Effect payload_effect(const Eigen::MatrixXd& conditioned, const Eigen::Vector3d&
 }  // namespace
 
 void add_payload_effects(const Dataset& d, const pipeline::Derivation& derivation, const Eigen::VectorXd& rests,
-                         std::vector<Effect>& out) {
+                         const Eigen::VectorXd& residual, const Eigen::MatrixXd& fixed, std::vector<Effect>& out) {
   const Eigen::MatrixXd all = standard_columns(d, derivation);
   if (all.size() == 0) return;
   const Eigen::VectorXd weight = torque_weights(analysis_torque_rms(d));
   const Eigen::MatrixXd conditioned = d.condition(all);
   const auto resolved =
       resolved_axes(point_mass(conditioned, Eigen::Vector3d::Zero()), stacked_weights(weight, conditioned.rows()));
-  out.push_back(payload_effect(conditioned, load_point(d, conditioned, weight, resolved), resolved));
+  out.push_back(payload_effect(conditioned, load_point(conditioned, residual, fixed, weight, resolved), resolved));
 
   // The window is chosen on the rows where the joints move: in a hold, static friction may carry a
   // load's torque or keep one that looks like it (a hold from 8 s to a pick-up at 17 s on a MuJoCo
   // tele-operation log put the pick-up at 7.6 s and read a 10.4 g load as 6.3 g; left out, 17.5 s
   // and 9.97 g: blind seed 443 case 57).
   const Eigen::VectorXd scored = 1.0 - rests.array();
-  const auto window = find_payload_window(d, out.back().columns, d.residual, weight, scored);
+  const auto window = find_payload_window(d, out.back().columns, residual, weight, scored, fixed);
   if (!window) return;
   const Eigen::MatrixXd carried = d.condition(gated(d, all, *window));
-  Effect e = payload_effect(carried, load_point(d, carried, weight, resolved), resolved);
+  Effect e = payload_effect(carried, load_point(carried, residual, fixed, weight, resolved), resolved);
   if (std::isfinite(window->start)) e.shape.push_back({"picked_up_at", window->start, d.step});
   if (std::isfinite(window->end)) e.shape.push_back({"put_down_at", window->end, d.step});
   if (d.logs.size() > 1) e.shape.push_back({"log", static_cast<double>(window->log + 1), 0.0});

@@ -14,10 +14,12 @@
 
 namespace dyncc::diagnose {
 
-/// Appends the payload effects (conditioned, in the analysis rows) for the robot's payload link;
-/// the window of a load carried for a while is searched outside `rests` (A*n, 1 in a joint's
-/// holds: in_long_rests).
+/// Appends the payload effects (conditioned, in the analysis rows) for the robot's payload link,
+/// placed (the load's point, and the window of a load carried for a while) against `residual`
+/// (A*n) with the `fixed` columns (A*n x m: the effects accepted before, none at the first step)
+/// fitted beside the load's; the window is searched outside `rests` (A*n, 1 in a joint's holds:
+/// in_long_rests).
 void add_payload_effects(const Dataset& d, const pipeline::Derivation& derivation, const Eigen::VectorXd& rests,
-                         std::vector<Effect>& out);
+                         const Eigen::VectorXd& residual, const Eigen::MatrixXd& fixed, std::vector<Effect>& out);
 
 }  // namespace dyncc::diagnose

@@ -26,9 +26,12 @@ struct PayloadWindow {
 /// weighted by `weight` (n), on the stacked rows where `scored` (A*n) is 1. Of windows that
 /// explain the same, the narrowest: an edge that could lie anywhere in rows not scored lies at
 /// their end nearest the window's inside. Empty when no log has enough rows for a window.
+/// `fixed` (A*n x m, or empty): columns fitted over every row beside the load's (the effects
+/// accepted before it).
 std::optional<PayloadWindow> find_payload_window(const Dataset& d, const Eigen::MatrixXd& columns,
                                                  const Eigen::VectorXd& residual, const Eigen::VectorXd& weight,
-                                                 const Eigen::VectorXd& scored);
+                                                 const Eigen::VectorXd& scored,
+                                                 const Eigen::MatrixXd& fixed = Eigen::MatrixXd());
 
 /// The payload's columns (evaluation rows, S*n x k) kept only while the load is carried.
 Eigen::MatrixXd gated(const Dataset& d, const Eigen::MatrixXd& columns, const PayloadWindow& window);
