@@ -67,7 +67,8 @@ Eigen::Vector3d load_point(const Eigen::MatrixXd& conditioned, const Eigen::Vect
   Eigen::Vector3d c = Eigen::Vector3d::Zero();
   for (int pass = 0; pass < kPointPasses; ++pass) {
     Eigen::MatrixXd a(conditioned.rows(), 4 + fixed.cols());
-    a << point_mass(conditioned, c), fixed;
+    a.leftCols(4) = point_mass(conditioned, c);
+    if (fixed.cols() > 0) a.rightCols(fixed.cols()) = fixed;
     a = w.asDiagonal() * a;
     for (std::size_t k = 0; k < 3; ++k) {
       if (!resolved[k]) a.col(static_cast<Eigen::Index>(k) + 1).setZero();

@@ -33,7 +33,9 @@ class WindowFits {
     const Eigen::VectorXd w2 = weight.array().square();
     Eigen::MatrixXd z(n, width);
     for (Eigen::Index a = begin; a < end; ++a) {
-      z << columns.middleRows(a * n, n), fixed.middleRows(a * n, n), residual.segment(a * n, n);
+      z.leftCols(k_) = columns.middleRows(a * n, n);
+      if (m_ > 0) z.middleCols(k_, m_) = fixed.middleRows(a * n, n);  // (no rows to take of an empty matrix)
+      z.col(k_ + m_) = residual.segment(a * n, n);
       const Eigen::VectorXd w = w2.cwiseProduct(scored.segment(a * n, n));
       const auto s = static_cast<std::size_t>(a - begin);
       sums_[s + 1] = sums_[s] + z.transpose() * w.asDiagonal() * z;

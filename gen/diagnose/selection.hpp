@@ -160,7 +160,6 @@ Candidate narrowed_at_best_point(const Effect& chosen, const std::vector<int>& k
 std::vector<StepAlternative> per_joint_alternatives(const std::vector<const Candidate*>& named,
                                                     const RankedEffect& step, const StepState& s,
                                                     const Eigen::VectorXd& scored);
-bool closer_where_the_joint_moves(const Candidate& a, const Candidate& b, int joint, const StepState& s);
 std::vector<int> own_joints_of_effect(const Candidate& chosen, const RankedEffect& r, const StepState& s,
                                       const std::deque<Effect>& effects, const std::map<std::string, Candidate>& best,
                                       const std::vector<std::string>& taken, const std::vector<std::string>& fitted,

@@ -12,6 +12,10 @@
 
 namespace dyncc::diagnose {
 
+namespace {
+bool closer_where_the_joint_moves(const Candidate& a, const Candidate& b, int joint, const StepState& s);
+}  // namespace
+
 // Parsimony over two steps: a large column set (the whole inertial parameter set re-identified)
 // that two smaller effects explain together as well as it does alone (a rotor inertia and a
 // payload) is not the explanation: the stronger of the pair leads, the next step takes the other.
@@ -291,8 +295,6 @@ double ratio_where_moving(const Effect& a, const Effect& b) {
   return is_friction(a) != is_friction(b) ? kCloserWhereMoving : 1.0;
 }
 
-}  // namespace
-
 // Whether `a` leaves clearly less than `b` where `joint` (0-based) moves, at the first step: the
 // two are of the kinds compared where a joint moves (compared_where_moving), `a` may be named there
 // and leaves clearly less there, by closer_where_moving's test. Over all rows a friction and
@@ -317,6 +319,8 @@ bool closer_where_the_joint_moves(const Candidate& a, const Candidate& b, int jo
   return clearly_less(left_where_moving(a, joints, moving.away_folds, s),
                       left_where_moving(b, joints, moving.away_folds, s), ratio_where_moving(*a.effect, *b.effect));
 }
+
+}  // namespace
 
 // Of two per-joint effects that explain a step alike (as_good_as its leader) on a joint in common
 // and are compared where it moves (compared_where_moving), the one that leaves clearly less there
