@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 
 #include "diagnose/fold_plan.hpp"
 #include "diagnose/long_rests.hpp"
@@ -238,14 +239,16 @@ Diagnosis diagnose(const Dataset& d, const pipeline::Derivation& derivation) {
   std::vector<std::string> fitted;          // the per-joint parameters accepted so far ("fc2", ...)
   std::vector<Eigen::VectorXd> step_parts;  // what each accepted effect fitted at its step (stacked rows)
   std::vector<std::vector<StepAlternative>> step_alternatives;  // each step's per-joint "or" effects
+  std::optional<PayloadPlacer> payloads;                        // made when a later step first places the load again
   for (int step = 0; step < kMaxEffects; ++step) {
     const Eigen::VectorXd before = joint_rms(baseline, n);
     // A load not accepted yet is placed again beside the accepted effects, which took up the part
     // of its torque they share with it (payload.hpp; blind seed 443 case 9: a gain of the load's
     // joint). Its earlier placings stay candidates too.
     if (step > 0 && std::find(taken.begin(), taken.end(), "payload") == taken.end()) {
+      if (!payloads) payloads.emplace(d, derivation, holds.rests);
       std::vector<Effect> placed;
-      add_payload_effects(d, derivation, holds.rests, r0, accepted, placed);
+      payloads->add_effects(r0, accepted, placed);
       for (Effect& e : placed) effects.push_back(std::move(e));
     }
     const StepState step_state{accepted, r0, baseline, weight, folds, away, before, out.gap, derivation};

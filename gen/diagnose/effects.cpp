@@ -161,8 +161,8 @@ std::vector<Effect> candidate_effects(const Dataset& d, const pipeline::Derivati
   shifted("backlash", "width", Reading::as_is, [&](Eigen::Index s, Eigen::Index j) {
     return turning[j] >= kBacklashTurnOver ? 0.5 * std::tanh(carried(s, j) / kTorqueSignScale) : 0.0;
   });
-  add_payload_effects(d, derivation, rests, d.residual, Eigen::MatrixXd(d.residual.size(), 0),
-                      out);  // conditioned as they are made (a load's point is fitted)
+  // Conditioned as they are made (a load's point is fitted).
+  PayloadPlacer(d, derivation, rests).add_effects(d.residual, Eigen::MatrixXd(), out);
   return out;
 }
 

@@ -113,28 +113,32 @@ Effect payload_effect(const Eigen::MatrixXd& conditioned, const Eigen::Vector3d&
 
 }  // namespace
 
-void add_payload_effects(const Dataset& d, const pipeline::Derivation& derivation, const Eigen::VectorXd& rests,
-                         const Eigen::VectorXd& residual, const Eigen::MatrixXd& fixed, std::vector<Effect>& out) {
-  const Eigen::MatrixXd all = standard_columns(d, derivation);
-  if (all.size() == 0) return;
-  const Eigen::VectorXd weight = torque_weights(analysis_torque_rms(d));
-  const Eigen::MatrixXd conditioned = d.condition(all);
-  const auto resolved =
-      resolved_axes(point_mass(conditioned, Eigen::Vector3d::Zero()), stacked_weights(weight, conditioned.rows()));
-  out.push_back(payload_effect(conditioned, load_point(conditioned, residual, fixed, weight, resolved), resolved));
+PayloadPlacer::PayloadPlacer(const Dataset& d, const pipeline::Derivation& derivation, const Eigen::VectorXd& rests)
+    : d_(d),
+      all_(standard_columns(d, derivation)),
+      weight_(torque_weights(analysis_torque_rms(d))),
+      // The window is chosen on the rows where the joints move: in a hold, static friction may
+      // carry a load's torque or keep one that looks like it (a hold from 8 s to a pick-up at 17 s
+      // on a MuJoCo tele-operation log put the pick-up at 7.6 s and read a 10.4 g load as 6.3 g;
+      // left out, 17.5 s and 9.97 g: blind seed 443 case 57).
+      scored_(1.0 - rests.array()) {
+  if (all_.size() == 0) return;
+  conditioned_ = d.condition(all_);
+  resolved_ =
+      resolved_axes(point_mass(conditioned_, Eigen::Vector3d::Zero()), stacked_weights(weight_, conditioned_.rows()));
+}
 
-  // The window is chosen on the rows where the joints move: in a hold, static friction may carry a
-  // load's torque or keep one that looks like it (a hold from 8 s to a pick-up at 17 s on a MuJoCo
-  // tele-operation log put the pick-up at 7.6 s and read a 10.4 g load as 6.3 g; left out, 17.5 s
-  // and 9.97 g: blind seed 443 case 57).
-  const Eigen::VectorXd scored = 1.0 - rests.array();
-  const auto window = find_payload_window(d, out.back().columns, residual, weight, scored, fixed);
+void PayloadPlacer::add_effects(const Eigen::VectorXd& residual, const Eigen::MatrixXd& fixed,
+                                std::vector<Effect>& out) const {
+  if (all_.size() == 0) return;
+  out.push_back(payload_effect(conditioned_, load_point(conditioned_, residual, fixed, weight_, resolved_), resolved_));
+  const auto window = find_payload_window(d_, out.back().columns, residual, weight_, scored_, fixed);
   if (!window) return;
-  const Eigen::MatrixXd carried = d.condition(gated(d, all, *window));
-  Effect e = payload_effect(carried, load_point(carried, residual, fixed, weight, resolved), resolved);
-  if (std::isfinite(window->start)) e.shape.push_back({"picked_up_at", window->start, d.step});
-  if (std::isfinite(window->end)) e.shape.push_back({"put_down_at", window->end, d.step});
-  if (d.logs.size() > 1) e.shape.push_back({"log", static_cast<double>(window->log + 1), 0.0});
+  const Eigen::MatrixXd carried = d_.condition(gated(d_, all_, *window));
+  Effect e = payload_effect(carried, load_point(carried, residual, fixed, weight_, resolved_), resolved_);
+  if (std::isfinite(window->start)) e.shape.push_back({"picked_up_at", window->start, d_.step});
+  if (std::isfinite(window->end)) e.shape.push_back({"put_down_at", window->end, d_.step});
+  if (d_.logs.size() > 1) e.shape.push_back({"log", static_cast<double>(window->log + 1), 0.0});
   out.push_back(std::move(e));
 }
 

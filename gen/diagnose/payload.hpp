@@ -7,6 +7,7 @@
 // inertial_parameters).
 #pragma once
 
+#include <array>
 #include <vector>
 
 #include "diagnose/dataset.hpp"
@@ -14,12 +15,26 @@
 
 namespace dyncc::diagnose {
 
-/// Appends the payload effects (conditioned, in the analysis rows) for the robot's payload link,
-/// placed (the load's point, and the window of a load carried for a while) against `residual`
-/// (A*n) with the `fixed` columns (A*n x m: the effects accepted before, none at the first step)
-/// fitted beside the load's; the window is searched outside `rests` (A*n, 1 in a joint's holds:
-/// in_long_rests).
-void add_payload_effects(const Dataset& d, const pipeline::Derivation& derivation, const Eigen::VectorXd& rests,
-                         const Eigen::VectorXd& residual, const Eigen::MatrixXd& fixed, std::vector<Effect>& out);
+/// Places the payload candidates for the robot's payload link: its columns conditioned once,
+/// then, for each residual the load is placed against, the effects (conditioned, in the analysis
+/// rows). Constant once made; `d` must outlive it.
+class PayloadPlacer {
+ public:
+  /// The window of a load carried for a while is searched outside `rests` (A*n, 1 in a joint's
+  /// holds: in_long_rests).
+  PayloadPlacer(const Dataset& d, const pipeline::Derivation& derivation, const Eigen::VectorXd& rests);
+
+  /// Appends the load over the whole log and, when one is found, while carried, each placed (its
+  /// point, and the window) against `residual` (A*n) with the `fixed` columns (A*n x m: the effects
+  /// accepted before it; none, 0 columns, at the first step) fitted beside the load's.
+  void add_effects(const Eigen::VectorXd& residual, const Eigen::MatrixXd& fixed, std::vector<Effect>& out) const;
+
+ private:
+  const Dataset& d_;
+  Eigen::MatrixXd all_;  // the link's ten standard columns (evaluation rows); empty: no payload link
+  Eigen::MatrixXd conditioned_;
+  Eigen::VectorXd weight_, scored_;
+  std::array<bool, 3> resolved_{};  // the first moments the data resolves
+};
 
 }  // namespace dyncc::diagnose

@@ -132,8 +132,7 @@ std::optional<PayloadWindow> find_payload_window(const Dataset& d, const Eigen::
     const Eigen::Index length = end - begin;
     const Eigen::Index step = length / kGridPoints;
     if (step >= 2) {
-      const WindowFits fits(d, columns, fixed.cols() > 0 ? fixed : Eigen::MatrixXd(columns.rows(), 0), residual, weight,
-                            scored, begin, end);
+      const WindowFits fits(d, columns, fixed, residual, weight, scored, begin, end);
       const auto shortest = static_cast<Eigen::Index>(kShortestShare * static_cast<double>(length));
       const auto unloaded = static_cast<Eigen::Index>(kShortestUnloaded * static_cast<double>(length));
       auto allowed = [&](Eigen::Index a, Eigen::Index b) {
