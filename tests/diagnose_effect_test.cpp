@@ -5,11 +5,13 @@
 
 #include <cmath>
 #include <map>
+#include <numbers>
 #include <ostream>
 #include <random>
 #include <type_traits>
 
 #include "diagnose/contact.hpp"
+#include "diagnose/crossval.hpp"
 #include "diagnose/dataset.hpp"
 #include "diagnose/diagnosis.hpp"
 #include "diagnose/diagnosis_output.hpp"
@@ -207,6 +209,59 @@ TEST(NoiseFloor, PositionsNoiseFloorIsWhatTheirNoiseAddsToTheResidual) {
     EXPECT_NEAR(growth, floor, 0.25 * floor);
     EXPECT_GT(floor, 5 * clean.position_noise_torque[j]);  // the quantum's own 0.06 mrad of noise
   }
+}
+
+// The model's own torque along a motion whose base-joint acceleration steps by 4 rad/s^2 every
+// second (a closed loop's torque turns over at each reversal so): the logged torque, with the
+// model's friction, is the model's at each exact state, the positions are exact. What is left in
+// the residual is how the conditioning treats the two sides. The model's inertial torque is made
+// from filtered positions and then conditioned, two passes of the filter; when the logged torque
+// passed it once, the band between the two was left on joint 1: 4.8 % of its torque RMS here,
+// 0.3 % now.
+TEST(Conditioning, TheModelsOwnTorqueLeavesNoResidualWhereTheAccelerationSteps) {
+  const pipeline::Derivation& derivation = kraft_derivation();
+  const double rate = 1000, duration = 20, step = 2.0;  // rad/s^2 either way of zero
+  const auto samples = static_cast<Eigen::Index>(duration * rate);
+  diagnose::JointLog log;
+  log.path = "steps";
+  log.t.resize(samples);
+  log.q.resize(samples, 3);
+  log.tau.resize(samples, 3);
+  const Eigen::VectorXd nominal = derivation.numeric->nominal_standard_values();
+  double q1 = 0, v1 = -1.0;  // a triangle wave of velocity, +-1 rad/s
+  for (Eigen::Index s = 0; s < samples; ++s) {
+    const double t = static_cast<double>(s) / rate;
+    const double a1 = std::fmod(t, 2.0) < 1.0 ? step : -step;
+    const double w = 2 * std::numbers::pi * 0.3;
+    Eigen::VectorXd q(3), qd(3), qdd(3);
+    q << q1, -0.3 + 0.2 * std::sin(w * t), 0.7 + 0.2 * std::cos(w * t);
+    qd << v1, 0.2 * w * std::cos(w * t), -0.2 * w * std::sin(w * t);
+    qdd << a1, -0.2 * w * w * std::sin(w * t), -0.2 * w * w * std::cos(w * t);
+    log.t[s] = t;
+    log.q.row(s) = q.transpose();
+    const std::vector<dyn::State> state{{q, qd, qd, qdd}};
+    log.tau.row(s) = derivation.numeric->evaluate(state, nominal, false).front().tau.transpose();
+    q1 += v1 / rate + 0.5 * a1 / (rate * rate);
+    v1 += a1 / rate;
+  }
+  const diagnose::Dataset d = diagnose::build_dataset({log}, derivation);
+  const Eigen::VectorXd residual = diagnose::joint_rms(d.residual, 3);
+  const Eigen::VectorXd torque = diagnose::analysis_torque_rms(d);
+  // The logged torque through one pass against the model's unfiltered friction and its rigid-body
+  // torque (as the residual was made before): the check is sharp enough to see the difference.
+  auto stacked = [](const Eigen::MatrixXd& m) {
+    const Eigen::MatrixXd transposed = m.transpose();
+    return Eigen::VectorXd(Eigen::Map<const Eigen::VectorXd>(transposed.data(), transposed.size()));
+  };
+  const Eigen::VectorXd friction = stacked(d.model_friction);
+  const Eigen::VectorXd once =
+      d.condition(stacked(d.tau) - (stacked(d.model_tau) - d.prefilter(friction) + friction)).col(0);
+  const Eigen::VectorXd residual_once = diagnose::joint_rms(once, 3);
+  for (Eigen::Index j = 0; j < 3; ++j) {
+    SCOPED_TRACE(j + 1);
+    EXPECT_LT(residual[j], 0.01 * torque[j]);
+  }
+  EXPECT_GT(residual_once[0], 0.03 * torque[0]);
 }
 
 // d f / d q_j by a central difference.

@@ -21,6 +21,7 @@
 #include "diagnose/crossval.hpp"
 #include "diagnose/dataset.hpp"
 #include "diagnose/diagnosis.hpp"
+#include "diagnose/effects.hpp"
 #include "diagnose/report_figures.hpp"
 #include "diagnose/residuals.hpp"
 #include "diagnose/signal_analysis.hpp"
@@ -235,8 +236,8 @@ TEST(DiagnoseReport, FittedCoulombCurveReachesTheInjectedSize) {
 }
 
 TEST(DiagnoseReport, VelocityCurveIsTheShapeOfTheEffectsColumns) {
-  // The curve at the evaluation rows' velocities, through the dataset's filter, is the fitted
-  // part of the residual the refit computed from the effect's own columns.
+  // The curve at the evaluation rows' velocities, through the dataset's filter (both passes for a
+  // sharp one), is the fitted part of the residual the refit computed from the effect's own columns.
   const Diagnosed& c = coulomb();
   for (const diagnose::EffectFit& fit : c.residuals.effects) {
     if (!diagnose::has_velocity_curve(fit.effect)) continue;
@@ -245,7 +246,8 @@ TEST(DiagnoseReport, VelocityCurveIsTheShapeOfTheEffectsColumns) {
     for (Eigen::Index s = 0; s < c.data.samples(); ++s) {
       for (Eigen::Index j = 0; j < n; ++j) stacked(s * n + j, 0) = diagnose::velocity_curve(fit, j, c.data.qd(s, j));
     }
-    const Eigen::VectorXd conditioned = c.data.condition(stacked).col(0);
+    const Eigen::VectorXd conditioned =
+        c.data.condition(diagnose::sharp_in_time(fit.effect) ? c.data.prefilter(stacked) : stacked).col(0);
     EXPECT_LT((conditioned - fit.contribution).norm(), 1e-9 * fit.contribution.norm()) << fit.effect;
   }
   // And a Stribeck fit: Coulomb plus the excess fading over its scale.

@@ -194,7 +194,9 @@ std::optional<Eigen::VectorXd> modelled_effect_rms(const diagnose::Dataset& data
     else
       return std::nullopt;
   }
-  return diagnose::joint_rms(data.condition(torque).col(0), n);
+  // Through both of the filter's passes, as the diagnosis's columns (diagnose/dataset.hpp).
+  const bool sharp = diagnose::sharp_in_time(e.effect);
+  return diagnose::joint_rms(data.condition(sharp ? data.prefilter(torque) : torque).col(0), n);
 }
 
 // Whether a fitted parameter meets the goal for its effect: within 10 % (a gain's

@@ -110,7 +110,7 @@ Effect ContactRows::effect(const ContactPoint& at) const {
     e.parameters = {"force"};
     e.joint_of = {-1};
     e.reading = {Reading::as_is};
-    e.columns = d.condition(e.columns);
+    e.columns = d.condition(e.columns);  // one pass: see Dataset (a contact is the measured exception)
     return e;
   }
   e.columns = Eigen::MatrixXd::Zero(samples * n, 8);
@@ -137,7 +137,7 @@ Effect ContactRows::effect(const ContactPoint& at) const {
     e.joint_of.push_back(-1);
     e.reading.push_back(Reading::as_is);
   }
-  e.columns = d.condition(e.columns);
+  e.columns = d.condition(e.columns);  // one pass: see Dataset (a contact is the measured exception)
   return e;
 }
 

@@ -86,7 +86,8 @@ Conditioned condition_log(const JointLog& log, const Audit& audit, double cutoff
 // model torque (the friction sign's share is sign_floor's), through the same filter. One fixed
 // draw: the same log gets the same diagnosis.
 Eigen::VectorXd position_noise_torque(const std::vector<JointLog>& logs, const Dataset& d,
-                                      const dyn::NumericModel& model, const Eigen::VectorXd& nominal) {
+                                      const dyn::NumericModel& model, const Eigen::VectorXd& nominal,
+                                      const Eigen::MatrixXd& rigid) {
   const Eigen::Index n = d.n;
   std::mt19937 random(kNoiseSeed);
   std::normal_distribution<double> normal;
@@ -110,7 +111,7 @@ Eigen::VectorXd position_noise_torque(const std::vector<JointLog>& logs, const D
         const dyn::Evaluation& e = at[k];
         const Eigen::Index row = g.begin + chunk + static_cast<Eigen::Index>(k);
         for (Eigen::Index j = 0; j < n; ++j) {
-          change(row * n + j, 0) = (e.tau[j] - e.friction[j]) - (d.model_tau(row, j) - d.model_friction(row, j));
+          change(row * n + j, 0) = (e.tau[j] - e.friction[j]) - rigid(row, j);
         }
       }
     }
@@ -121,6 +122,24 @@ Eigen::VectorXd position_noise_torque(const std::vector<JointLog>& logs, const D
   return (rms / static_cast<double>(std::max<Eigen::Index>(1, filtered.size() / n))).cwiseSqrt();
 }
 
+// Every column of a stacked (S*n x k) matrix through the zero-phase filter along time, per joint
+// and per log; `take(segment, filtered)` gets each log's rows (column c * n + i: joint i of c).
+template <typename Take>
+void filter_segments(const Dataset& d, const Eigen::MatrixXd& stacked, Take take) {
+  const Eigen::Index n = d.n;
+  for (const Dataset::Segment& g : d.segments) {
+    const Eigen::Index length = g.end - g.begin;
+    RowMatrix x(length, stacked.cols() * n);
+    for (Eigen::Index s = 0; s < length; ++s) {
+      for (Eigen::Index c = 0; c < stacked.cols(); ++c) {
+        for (Eigen::Index i = 0; i < n; ++i) x(s, c * n + i) = stacked((g.begin + s) * n + i, c);
+      }
+    }
+    zero_phase_lowpass_rows(x, d.cutoff, g.rate);
+    take(g, x);
+  }
+}
+
 }  // namespace
 
 Eigen::MatrixXd Dataset::condition(const Eigen::MatrixXd& stacked) const {
@@ -128,15 +147,7 @@ Eigen::MatrixXd Dataset::condition(const Eigen::MatrixXd& stacked) const {
   for (const Segment& g : segments) total += static_cast<Eigen::Index>(g.keep.size());
   Eigen::MatrixXd out(total * n, stacked.cols());
   Eigen::Index row = 0;
-  for (const Segment& g : segments) {
-    const Eigen::Index length = g.end - g.begin;
-    RowMatrix x(length, stacked.cols() * n);  // column c * n + i: joint i of column c
-    for (Eigen::Index s = 0; s < length; ++s) {
-      for (Eigen::Index c = 0; c < stacked.cols(); ++c) {
-        for (Eigen::Index i = 0; i < n; ++i) x(s, c * n + i) = stacked((g.begin + s) * n + i, c);
-      }
-    }
-    zero_phase_lowpass_rows(x, cutoff, g.rate);
+  filter_segments(*this, stacked, [&](const Segment& g, const RowMatrix& x) {
     for (std::size_t k = 0; k < g.keep.size(); ++k) {
       for (Eigen::Index c = 0; c < stacked.cols(); ++c) {
         for (Eigen::Index i = 0; i < n; ++i)
@@ -144,7 +155,19 @@ Eigen::MatrixXd Dataset::condition(const Eigen::MatrixXd& stacked) const {
       }
     }
     row += static_cast<Eigen::Index>(g.keep.size());
-  }
+  });
+  return out;
+}
+
+Eigen::MatrixXd Dataset::prefilter(const Eigen::MatrixXd& stacked) const {
+  Eigen::MatrixXd out(stacked.rows(), stacked.cols());
+  filter_segments(*this, stacked, [&](const Segment& g, const RowMatrix& x) {
+    for (Eigen::Index s = 0; s < g.end - g.begin; ++s) {
+      for (Eigen::Index c = 0; c < stacked.cols(); ++c) {
+        for (Eigen::Index i = 0; i < n; ++i) out((g.begin + s) * n + i, c) = x(s, c * n + i);
+      }
+    }
+  });
   return out;
 }
 
@@ -169,7 +192,8 @@ Eigen::VectorXd away_from_zero_velocity(const Dataset& d) {
   for (Eigen::Index s = 0; s < d.samples(); ++s) {
     for (Eigen::Index j = 0; j < d.n; ++j) near_zero(s * d.n + j, 0) = std::abs(d.qd(s, j)) < band[j] ? 1.0 : 0.0;
   }
-  const Eigen::VectorXd leak = d.condition(near_zero).col(0);
+  // Both passes: the band spreads into the residual as the friction's sign does.
+  const Eigen::VectorXd leak = d.condition(d.prefilter(near_zero)).col(0);
   return (leak.array().abs() <= kBandLeak).cast<double>().matrix();
 }
 
@@ -257,7 +281,6 @@ Dataset build_dataset(const std::vector<JointLog>& logs, const pipeline::Derivat
   Eigen::Index row = 0;
   for (std::size_t l = 0; l < parts.size(); ++l) {
     const Conditioned& c = parts[l];
-    const Eigen::Index begin = row;
     for (Eigen::Index chunk = 0; chunk < c.t.size(); chunk += kModelRowsPerBatch) {
       // The model at a batch of rows, and at each row's positions moved by +-step, one joint at a
       // time: state (1 + 2 j) and (2 + 2 j) of row k are states[k * (1 + 2 n) + ...].
@@ -304,13 +327,8 @@ Dataset build_dataset(const std::vector<JointLog>& logs, const pipeline::Derivat
         d.dtau_dq.push_back(sensitivity);
       }
     }
-    const Eigen::Index count = row - begin;
-    for (Eigen::Index j = 0; j < n; ++j) {
-      d.model_tau_rate.block(begin, j, count, 1) = derivative(d.model_tau.block(begin, j, count, 1), 1.0 / c.rate);
-    }
   }
 
-  // The analysis rows: logged and model torque through the same filter.
   auto stack = [&](const Eigen::MatrixXd& m) {
     Eigen::MatrixXd out(m.rows() * n, 1);
     for (Eigen::Index s = 0; s < m.rows(); ++s) out.block(s * n, 0, n, 1) = m.row(s).transpose();
@@ -321,10 +339,22 @@ Dataset build_dataset(const std::vector<JointLog>& logs, const pipeline::Derivat
     for (Eigen::Index s = 0; s < out.rows(); ++s) out.row(s) = v.block(s * n, 0, n, 1).transpose();
     return out;
   };
+  // The model's first pass (see Dataset::prefilter): its rigid-body torque had it in the
+  // positions; its friction, sharp at each reversal, gets it here.
+  const Eigen::MatrixXd rigid = d.model_tau - d.model_friction;
+  d.model_tau = rigid + unstack(d.prefilter(stack(d.model_friction)));
+  for (const Dataset::Segment& g : d.segments) {
+    for (Eigen::Index j = 0; j < n; ++j) {
+      d.model_tau_rate.block(g.begin, j, g.end - g.begin, 1) =
+          derivative(d.model_tau.block(g.begin, j, g.end - g.begin, 1), 1.0 / g.rate);
+    }
+  }
+
+  // The analysis rows: logged and model torque through the same two passes.
   d.analysis_tau = unstack(d.condition(stack(d.tau)));
   d.analysis_qd = unstack(d.condition(stack(d.qd)));
   d.analysis_qdd = unstack(d.condition(stack(d.qdd)));
-  d.residual = d.condition(stack(d.tau) - stack(d.model_tau)).col(0);
+  d.residual = d.condition(d.prefilter(stack(d.tau)) - stack(d.model_tau)).col(0);
   for (const Dataset::Segment& g : d.segments) {
     for (const Eigen::Index k : g.keep) {
       d.analysis_log.push_back(d.log_of[static_cast<std::size_t>(g.begin + k)]);
@@ -335,7 +365,7 @@ Dataset build_dataset(const std::vector<JointLog>& logs, const pipeline::Derivat
   for (const Dataset::Segment& g : d.segments) {
     for (const Eigen::Index k : g.keep) d.analysis_t[a++] = d.t[g.begin + k];
   }
-  d.position_noise_torque = position_noise_torque(logs, d, model, nominal);
+  d.position_noise_torque = position_noise_torque(logs, d, model, nominal, rigid);
   return d;
 }
 

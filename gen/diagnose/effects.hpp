@@ -9,6 +9,7 @@
 #include <Eigen/Dense>
 #include <memory>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "diagnose/crossval.hpp"
@@ -53,6 +54,12 @@ inline constexpr double kBacklashTurnOver = 0.1;
 /// half of it (a dead band's width is at most twice this); beyond, a joint is loose or the
 /// description wrong. The bench draws within it, the diagnosis refuses fits beyond it.
 inline constexpr double kLargestDeflection = 0.05;
+
+/// Whether an effect's columns are sharp in time where the logged torque is (a friction's sign
+/// turning over at a reversal): they get the filter's first pass from Dataset::prefilter, as the
+/// logged torque does; every other effect's columns are made from the filtered positions, which
+/// had it.
+bool sharp_in_time(std::string_view effect);
 
 /// The payload link: the deepest link without children (ties: the heaviest), where a tool or a
 /// hook carries a load.

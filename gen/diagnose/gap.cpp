@@ -31,7 +31,7 @@ Eigen::VectorXd sign_floor(const Dataset& d, const pipeline::Derivation& derivat
       const double v = d.qd(s, j);
       change(s * n + j, 0) = 0.5 * nominal[index] * (smooth_sign(v + velocity_error) - smooth_sign(v - velocity_error));
     }
-    floor[j] = joint_rms(d.condition(change).col(0), n)[j];
+    floor[j] = joint_rms(d.condition(d.prefilter(change)).col(0), n)[j];  // sharp: both passes
   }
   return floor;
 }

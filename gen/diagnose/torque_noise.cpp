@@ -25,7 +25,9 @@ NoiseDraws carried_torque_noise(const Dataset& d, const ModelSensitivity& m) {
     }
     out.columns.emplace_back(d.condition(shift_tangents(d, m, filtered_shift(d, noise))));
     const Eigen::MatrixXd transposed = noise.transpose();  // stacked: row s*n + j
-    out.target.emplace_back(d.condition(Eigen::Map<const Eigen::VectorXd>(transposed.data(), samples * n)).col(0));
+    // Into the residual through both passes, as the logged torque (Dataset::prefilter).
+    out.target.emplace_back(
+        d.condition(d.prefilter(Eigen::Map<const Eigen::VectorXd>(transposed.data(), samples * n))).col(0));
   }
   return out;
 }
