@@ -246,8 +246,7 @@ TEST(DiagnoseReport, VelocityCurveIsTheShapeOfTheEffectsColumns) {
     for (Eigen::Index s = 0; s < c.data.samples(); ++s) {
       for (Eigen::Index j = 0; j < n; ++j) stacked(s * n + j, 0) = diagnose::velocity_curve(fit, j, c.data.qd(s, j));
     }
-    const Eigen::VectorXd conditioned =
-        c.data.condition(diagnose::sharp_in_time(fit.effect) ? c.data.prefilter(stacked) : stacked).col(0);
+    const Eigen::VectorXd conditioned = diagnose::conditioned_columns(c.data, fit.effect, stacked).col(0);
     EXPECT_LT((conditioned - fit.contribution).norm(), 1e-9 * fit.contribution.norm()) << fit.effect;
   }
   // And a Stribeck fit: Coulomb plus the excess fading over its scale.

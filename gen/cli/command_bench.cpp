@@ -194,9 +194,7 @@ std::optional<Eigen::VectorXd> modelled_effect_rms(const diagnose::Dataset& data
     else
       return std::nullopt;
   }
-  // Through both of the filter's passes, as the diagnosis's columns (diagnose/dataset.hpp).
-  const bool sharp = diagnose::sharp_in_time(e.effect);
-  return diagnose::joint_rms(data.condition(sharp ? data.prefilter(torque) : torque).col(0), n);
+  return diagnose::joint_rms(diagnose::conditioned_columns(data, e.effect, torque).col(0), n);
 }
 
 // Whether a fitted parameter meets the goal for its effect: within 10 % (a gain's

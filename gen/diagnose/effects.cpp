@@ -57,6 +57,10 @@ Effect per_joint(const Dataset& d, const std::string& name, const std::string& p
 
 bool sharp_in_time(std::string_view effect) { return effect == "coulomb_friction" || effect == "stribeck_friction"; }
 
+Eigen::MatrixXd conditioned_columns(const Dataset& d, std::string_view effect, const Eigen::MatrixXd& stacked) {
+  return sharp_in_time(effect) ? d.condition(d.prefilter(stacked)) : d.condition(stacked);
+}
+
 int payload_link(const pipeline::Derivation& derivation) {
   const auto& links = derivation.robot.links;
   const Eigen::VectorXd nominal = derivation.numeric->nominal_standard_values();
@@ -136,7 +140,7 @@ std::vector<Effect> candidate_effects(const Dataset& d, const pipeline::Derivati
     out.push_back(e);
   }
   // Into the analysis rows, through the filter's two passes as the logged torque (dataset.hpp).
-  for (Effect& e : out) e.columns = d.condition(sharp_in_time(e.name) ? d.prefilter(e.columns) : e.columns);
+  for (Effect& e : out) e.columns = conditioned_columns(d, e.name, e.columns);
   fit_delay_column(d, out[delay_at]);  // a secant where the delay is large
   // Effects that shift the measured positions off the link's, by theta_j w_j(t) (conditioned as
   // they are made: the columns are re-linearised at a first fit).

@@ -61,6 +61,10 @@ inline constexpr double kLargestDeflection = 0.05;
 /// had it.
 bool sharp_in_time(std::string_view effect);
 
+/// An effect's columns at the evaluation rows (S*n x k) into the analysis rows, through the
+/// filter's two passes as the logged torque goes (the first from prefilter where they are sharp).
+Eigen::MatrixXd conditioned_columns(const Dataset& d, std::string_view effect, const Eigen::MatrixXd& stacked);
+
 /// The payload link: the deepest link without children (ties: the heaviest), where a tool or a
 /// hook carries a load.
 int payload_link(const pipeline::Derivation& derivation);
