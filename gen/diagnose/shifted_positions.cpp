@@ -189,21 +189,29 @@ void fit_shift_columns(const Dataset& d, const pipeline::Derivation& derivation,
   }
 }
 
-void fit_delay_column(const Dataset& d, Effect& effect) {
+bool delay_needs_secant(const Dataset& d, double delay) {
+  return std::isfinite(delay) && std::abs(delay) * 2 * std::numbers::pi * d.cutoff >= kLinearPhase;
+}
+
+Eigen::MatrixXd delay_secant(const Dataset& d, double delay) {
   const Eigen::Index n = d.n;
-  for (int pass = 0; pass < 2; ++pass) {
-    const double delay = weighted_fit(d, effect.columns)[0];
-    if (!std::isfinite(delay) || std::abs(delay) * 2 * std::numbers::pi * d.cutoff < kLinearPhase) return;
-    Eigen::MatrixXd secant(d.samples() * n, 1);
-    for (const Dataset::Segment& g : d.segments) {
-      for (Eigen::Index s = g.begin; s < g.end; ++s) {
-        for (Eigen::Index j = 0; j < n; ++j) {
-          const double later = shifted_in_time(d.model_tau, d.model_tau_rate, g.begin, g.end, g.rate, s, j, delay);
-          secant(s * n + j, 0) = (later - d.model_tau(s, j)) / delay;
-        }
+  Eigen::MatrixXd secant(d.samples() * n, 1);
+  for (const Dataset::Segment& g : d.segments) {
+    for (Eigen::Index s = g.begin; s < g.end; ++s) {
+      for (Eigen::Index j = 0; j < n; ++j) {
+        const double later = shifted_in_time(d.model_tau, d.model_tau_rate, g.begin, g.end, g.rate, s, j, delay);
+        secant(s * n + j, 0) = (later - d.model_tau(s, j)) / delay;
       }
     }
-    effect.columns = d.condition(secant);
+  }
+  return d.condition(secant);
+}
+
+void fit_delay_column(const Dataset& d, Effect& effect) {
+  for (int pass = 0; pass < 2; ++pass) {
+    const double delay = weighted_fit(d, effect.columns)[0];
+    if (!delay_needs_secant(d, delay)) return;
+    effect.columns = delay_secant(d, delay);
   }
 }
 

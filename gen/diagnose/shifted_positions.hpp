@@ -57,4 +57,9 @@ void fit_shift_columns(const Dataset& d, const pipeline::Derivation& derivation,
 /// interpolation between evaluation rows (its rate is their slope).
 void fit_delay_column(const Dataset& d, Effect& effect);
 
+/// Whether a delay is long enough for the secant (over 0.5 rad of phase at the filter's cut-off).
+bool delay_needs_secant(const Dataset& d, double delay);
+/// The sensor delay's secant column at `delay` (S*n x 1, conditioned), as fit_delay_column makes it.
+Eigen::MatrixXd delay_secant(const Dataset& d, double delay);
+
 }  // namespace dyncc::diagnose
