@@ -407,6 +407,17 @@ TEST(BlindBenchCase, KraftPayloadBesideATorqueGainOfItsJointIsReadInAppliedTorqu
               {{"mass", payload.size, 0.01 * payload.size}, {"gain2", gain.size, 0.1 * (gain.size - 1)}});
 }
 
+// Case 24 of the blind seed 439 (Kraft, open loop, 81 Hz): a 47 g payload picked up at 13.6 s
+// beside an offset of joint 2 of 0.173 rad. Alone, the offset fits 0.242 rad (it takes up part of
+// the load's torque), and its columns were the secant made there: read beside the payload, that
+// chord left the mass 3.8 % heavy. Made again at the joint fit's offset, 1.6 %.
+TEST(BlindBenchCase, KraftPayloadBesideALargeOffsetIsReadWithTheSecantMadeAtTheJointFit) {
+  const Injection payload{.effect = "payload", .joint = 1, .size = 0.04744393495034269};
+  const Injection offset{.effect = "position_offset", .joint = 1, .size = 0.1725234006694808};
+  expect_case(diagnosed("kraft", {payload, offset}, 81, 439U * 1000U + 24U, 13.58631949482385), "payload", {},
+              {{"mass", payload.size, 0.03 * payload.size}, {"offset2", offset.size, 0.1 * offset.size}});
+}
+
 // Case 59 of the blind seed 139 (Panda, 1 kHz): a torque gain of 1.22 on joint 7 beside a 14 ms
 // delay. Joint 7's torque is mostly the drive's friction, so at the first step a Coulomb friction
 // of joint 7 ties with the gain and led ("coulomb_friction or torque_gain"); after the delay, the

@@ -7,6 +7,7 @@
 #pragma once
 
 #include <Eigen/Dense>
+#include <functional>
 #include <memory>
 #include <string>
 #include <string_view>
@@ -43,6 +44,11 @@ struct Effect {
   // Where the columns are made from the logged torque (a spring's): that torque's noise in them,
   // per joint (`at` the joints, not columns), for reading the parameters unbiased (torque_noise.hpp).
   std::shared_ptr<const NoiseDraws> torque_noise;
+  // An effect not linear in its parameter (a sensor delay, a shift of the positions) has columns
+  // that are secants made at a first fit. This makes joint j's column (-1: a shared one) again at
+  // theta, conditioned (the tangent where that serves). It refers to the Dataset the effect was
+  // made from: called while the diagnosis runs (settle.cpp), not after. Empty for the others.
+  std::function<Eigen::VectorXd(int joint, double theta)> secant_at;
 };
 
 /// A backlash shows only on a joint whose transmitted torque turns over: with its less common sign

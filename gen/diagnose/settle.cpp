@@ -13,7 +13,6 @@
 #include "diagnose/plausibility.hpp"
 #include "diagnose/regime_error.hpp"
 #include "diagnose/selection.hpp"
-#include "diagnose/shifted_positions.hpp"
 
 namespace dyncc::diagnose {
 namespace {
@@ -452,24 +451,27 @@ CrossValidation restate_steps(Diagnosis& out, const Eigen::VectorXd& r0, const E
   return std::move(fits.back());
 }
 
-// A long delay's column is its secant at the delay fitted alone (fit_delay_column), exact there
-// and a chord elsewhere: read beside the other selected effects, which take up part of what the
-// delay alone stood in for, the delay moves off that point and the chord bends it back toward it.
-// So the secant is made again at the joint fit's delay, twice (the second pass moved it by 0.03 ms). A 45 ms
-// delay beside a viscous friction of joint 1 (MuJoCo Fourier log at 1 kHz: blind seed 443 case
-// 39) was fitted alone at 31 ms, and the joint fit read the secant made there as 43.5 ms, 1.4
-// samples short.
-void relinearise_delay(Diagnosis& out, const Dataset& d, const Eigen::VectorXd& r0, const Eigen::VectorXd& weight) {
-  Eigen::Index at = 0;
-  for (Effect& e : out.accepted_effects) {
-    if (e.family == "sensor_delay") {
-      for (int pass = 0; pass < 2; ++pass) {
-        const double delay = fit_together(out.accepted_effects, r0, weight, out.folds, out.away, d.n).theta[at];
-        if (!delay_needs_secant(d, delay)) break;
-        e.columns = delay_secant(d, delay);
+// An effect not linear in its parameter (a long delay, a large shift of the positions) has
+// columns that are its secants at the value fitted alone (fit_delay_column, fit_shift_columns),
+// exact there and a chord elsewhere: read beside the other selected effects, which take up part of
+// what it alone stood in for, the value moves off that point and the chord bends it back toward
+// it. So the columns are made again at the joint fit's values, twice (the second pass moved a
+// delay by 0.03 ms). A 45 ms delay beside a viscous friction of joint 1 (MuJoCo Fourier log at
+// 1 kHz: blind seed 443 case 39) was fitted alone at 31 ms, and the joint fit read the secant made
+// there as 43.5 ms, 1.4 samples short (now 44.15).
+void relinearise_secants(Diagnosis& out, const Eigen::VectorXd& r0, const Eigen::VectorXd& weight, Eigen::Index n) {
+  const bool any = std::any_of(out.accepted_effects.begin(), out.accepted_effects.end(),
+                               [](const Effect& e) { return static_cast<bool>(e.secant_at); });
+  for (int pass = 0; any && pass < 2; ++pass) {
+    const Eigen::VectorXd theta = fit_together(out.accepted_effects, r0, weight, out.folds, out.away, n).theta;
+    Eigen::Index at = 0;
+    for (Effect& e : out.accepted_effects) {
+      for (Eigen::Index c = 0; e.secant_at && c < e.columns.cols(); ++c) {
+        if (std::isfinite(theta[at + c]))
+          e.columns.col(c) = e.secant_at(e.joint_of[static_cast<std::size_t>(c)], theta[at + c]);
       }
+      at += e.columns.cols();
     }
-    at += e.columns.cols();
   }
 }
 
@@ -764,7 +766,7 @@ void settle_selection(Diagnosis& out, const Dataset& d, const std::deque<Effect>
   const std::vector<RegimeSplit> splits = regime_splits(d, out.away);
   rechoose_points(out, effects, r0, out.weight, n, splits);
   one_effect_for_two_steps(out, step_alternatives, r0, out.weight, n, step_parts);
-  relinearise_delay(out, d, r0, out.weight);
+  relinearise_secants(out, r0, out.weight, n);
   refit_together(out, r0, out.weight, n, splits, std::move(step_parts));
   // Judged again as the joint fit reads them (a step judged each beside the effects before it
   // only): a payload that stood in for a torque gain read 0.09 g at 17 m beside a Stribeck

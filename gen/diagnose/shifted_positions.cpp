@@ -1,6 +1,7 @@
 #include "diagnose/shifted_positions.hpp"
 
 #include <cmath>
+#include <memory>
 #include <numbers>
 #include <span>
 #include <vector>
@@ -91,6 +92,26 @@ Eigen::VectorXd weighted_fit(const Dataset& d, const Eigen::MatrixXd& columns) {
   return (weights.asDiagonal() * columns).colPivHouseholderQr().solve(weights.asDiagonal() * d.residual);
 }
 
+// What a shift effect's columns are made from, kept with the effect (Effect::secant_at) so that
+// the selection can make a column again at the theta of its joint fit.
+struct ShiftSecants {
+  const Dataset& d;
+  ModelTorque model;
+  Shift shift;
+  Eigen::MatrixXd tau;       // S x n: the model's torque without its friction
+  Eigen::MatrixXd tangents;  // conditioned, one column per joint
+  Eigen::VectorXd reach;     // per joint, the largest |w_j|
+  // Where the largest shift theta w_j is beyond where the tangent serves and still a shift.
+  [[nodiscard]] bool needs_secant(Eigen::Index j, double theta) const {
+    const double largest = std::abs(theta) * reach[j];
+    return largest > kLinearShift && largest < kLargestShift;
+  }
+  // Joint j's secant column at theta, conditioned.
+  [[nodiscard]] Eigen::VectorXd secant_at(Eigen::Index j, double theta) const {
+    return d.condition(secant(d, model, shift, tau, j, theta)).col(0);
+  }
+};
+
 }  // namespace
 
 Shift filtered_shift(const Dataset& d, const Eigen::MatrixXd& raw) {
@@ -165,28 +186,24 @@ Eigen::MatrixXd shift_tangents(const Dataset& d, const ModelSensitivity& m, cons
 
 void fit_shift_columns(const Dataset& d, const pipeline::Derivation& derivation, const ModelSensitivity& m,
                        const Shift& shift, Effect& effect) {
-  const ModelTorque model(derivation);
-  const Eigen::Index n = d.n, samples = d.samples();
-  const Eigen::MatrixXd& tau = m.tau;
-  const Eigen::VectorXd reach = shift.w.cwiseAbs().colwise().maxCoeff().transpose();  // largest |w_j|
-  effect.columns = d.condition(shift_tangents(d, m, shift));
+  const Eigen::Index n = d.n;
+  const auto made = std::make_shared<const ShiftSecants>(
+      ShiftSecants{d, ModelTorque(derivation), shift, m.tau, d.condition(shift_tangents(d, m, shift)),
+                   shift.w.cwiseAbs().colwise().maxCoeff().transpose()});
+  effect.columns = made->tangents;
   for (int pass = 0; pass < 2; ++pass) {
     const Eigen::VectorXd theta = weighted_fit(d, effect.columns);
     std::vector<Eigen::Index> shifted;
     for (Eigen::Index j = 0; j < n; ++j) {
-      const double largest = std::abs(theta[j]) * reach[j];
-      if (largest > kLinearShift && largest < kLargestShift) shifted.push_back(j);
+      if (made->needs_secant(j, theta[j])) shifted.push_back(j);
     }
-    if (shifted.empty()) return;
-    Eigen::MatrixXd secants(samples * n, static_cast<Eigen::Index>(shifted.size()));
-    for (std::size_t k = 0; k < shifted.size(); ++k) {
-      secants.col(static_cast<Eigen::Index>(k)) = secant(d, model, shift, tau, shifted[k], theta[shifted[k]]);
-    }
-    const Eigen::MatrixXd conditioned = d.condition(secants);
-    for (std::size_t k = 0; k < shifted.size(); ++k) {
-      effect.columns.col(shifted[k]) = conditioned.col(static_cast<Eigen::Index>(k));
-    }
+    if (shifted.empty()) break;
+    for (const Eigen::Index j : shifted) effect.columns.col(j) = made->secant_at(j, theta[j]);
   }
+  effect.secant_at = [made](int joint, double theta) -> Eigen::VectorXd {
+    const auto j = static_cast<Eigen::Index>(joint);
+    return made->needs_secant(j, theta) ? made->secant_at(j, theta) : Eigen::VectorXd(made->tangents.col(j));
+  };
 }
 
 bool delay_needs_secant(const Dataset& d, double delay) {
@@ -208,11 +225,15 @@ Eigen::MatrixXd delay_secant(const Dataset& d, double delay) {
 }
 
 void fit_delay_column(const Dataset& d, Effect& effect) {
+  const Eigen::VectorXd tangent = effect.columns.col(0);
   for (int pass = 0; pass < 2; ++pass) {
     const double delay = weighted_fit(d, effect.columns)[0];
-    if (!delay_needs_secant(d, delay)) return;
+    if (!delay_needs_secant(d, delay)) break;
     effect.columns = delay_secant(d, delay);
   }
+  effect.secant_at = [&d, tangent](int, double delay) -> Eigen::VectorXd {
+    return delay_needs_secant(d, delay) ? Eigen::VectorXd(delay_secant(d, delay).col(0)) : tangent;
+  };
 }
 
 }  // namespace dyncc::diagnose
