@@ -44,7 +44,8 @@ Eigen::MatrixXd shift_tangents(const Dataset& d, const ModelSensitivity& m, cons
 
 /// The effect's columns (S*n x n, conditioned into the analysis rows) for the shift pattern:
 /// column j is (model at positions - theta_j w_j) - (model) over theta_j: the tangent first, then,
-/// twice, the secant at the fitted theta_j where the largest shift exceeds 0.01 rad.
+/// twice, the secant at the fitted theta_j where the largest shift exceeds 0.01 rad. Sets
+/// effect.secant_at, which makes a column again at another theta (the final joint fit's).
 void fit_shift_columns(const Dataset& d, const pipeline::Derivation& derivation, const ModelSensitivity& m,
                        const Shift& shift, Effect& effect);
 
