@@ -412,14 +412,13 @@ TEST(DiagnoseCommand, TeleoperationPayloadIsFittedAwayFromTheRowsWhereTheArmRest
 // times worse, kept them while the bar was twice, and its static friction took up part of the
 // payload's coupling torques: the mass read 3.8 % low (0.01006 kg). Any excess drops them.
 // Since the logged torque passes the filter twice, as the model's inertial torque does (dataset.hpp),
-// this log reads 10.01 g (-4.3 %, stated error 3.5 %; the load's point 0.413 m along the hook for
-// 0.40, its first moment -1.3 %): the MuJoCo plant's tele-operation loads read about 1 % lighter
-// than before over the stored bench, the rigid plant's 1.1 % less heavy (docs/sim2real.md). A base
-// joint taking up the load again would read it some 4 % lighter still: 5 % tells that apart.
+// this log read 10.01 g (-4.3 %): the static friction the plant holds near zero velocity spread
+// through the filter into the rows around, which stayed. Left out as well (kStaticFrictionLeak):
+// 10.42 g (-0.4 %).
 TEST(DiagnoseCommand, TeleoperationPayloadIsNotTakenUpByTheBaseJointsStaticFriction) {
   const double mass = 0.010460572454548567;
   std::map<std::string, double> fitted = teleop_payload_fit("teleop_payload_base", mass, 59033);
-  EXPECT_NEAR(fitted["mass"], mass, 0.05 * mass);
+  EXPECT_NEAR(fitted["mass"], mass, 0.03 * mass);
 }
 
 // The same task at 1 kHz with a torque gain of joint 3 (1.11, 10 % of the torque) beside the 10 g
@@ -428,8 +427,8 @@ TEST(DiagnoseCommand, TeleoperationPayloadIsNotTakenUpByTheBaseJointsStaticFrict
 // gain's torque too), was 18.4-51.8 s, the load was dropped beside the gain as not significant,
 // and the gain read 1.0763. Each later step searches the window again with the accepted
 // effects' columns fitted beside the load's: 17.4-58.8 s for 17.0-58.8, and both read right. Since
-// the logged torque passes the filter twice (see the test above) the mass reads 9.96 g (-4.3 %,
-// outside the payload goal of 3 %; the load dropped beside the gain, as before the fix, reads none).
+// the logged torque passes the filter twice (see the test above) the mass read 9.96 g (-4.3 %), and
+// since the rows a static friction spreads into are left out too, 10.40 g (+0.02 %).
 TEST(DiagnoseCommand, APayloadBesideAGainOfItsJointIsPlacedBesideTheGain) {
   const double gain = 1.1098245094324728, mass = 0.010402026200646633;
   const nlohmann::json d =
@@ -441,7 +440,7 @@ TEST(DiagnoseCommand, APayloadBesideAGainOfItsJointIsPlacedBesideTheGain) {
   std::map<std::string, double> fitted = fitted_of(d);
   ASSERT_TRUE(fitted.count("gain3") && fitted.count("mass")) << d["selected"].dump();
   EXPECT_NEAR(fitted["gain3"], gain, 0.1 * (gain - 1));
-  EXPECT_NEAR(fitted["mass"], mass, 0.05 * mass);
+  EXPECT_NEAR(fitted["mass"], mass, 0.03 * mass);
   EXPECT_NEAR(fitted["picked_up_at"], 17.0, 1.0);
 }
 
@@ -449,14 +448,15 @@ TEST(DiagnoseCommand, APayloadBesideAGainOfItsJointIsPlacedBesideTheGain) {
 // holds still from 8 s to 16 s before the pick-up, and static friction keeps an offset there that
 // the model does not have. The window chosen by what its fit explains in sample took that hold
 // in: picked up at 6.8 s, the mass 26 % low (0.0077 kg). Chosen by what it explains held out, the
-// pick-up is found within a second and the mass within 10 % (0.65 s early and 4.6 % low: the
-// bench's 3 % is not met on this log).
+// pick-up is found within a second (17.45 s: the arm is still until then). The mass read 4.6 %
+// low, then 8.6 % once the logged torque passed the filter twice, and within the bench's 3 % (-2.0 %)
+// since the rows a static friction spreads into are left out of the fit (kStaticFrictionLeak).
 TEST(DiagnoseCommand, TeleoperationPayloadWindowDoesNotTakeInTheHoldBeforeThePickUp) {
   const double mass = 0.010418162701672565;
   std::map<std::string, double> fitted = teleop_payload_fit("teleop_payload_hold", mass, 97057);
   ASSERT_TRUE(fitted.count("picked_up_at"));
   EXPECT_NEAR(fitted["picked_up_at"], 17.0, 1.0);
-  EXPECT_NEAR(fitted["mass"], mass, 0.1 * mass);
+  EXPECT_NEAR(fitted["mass"], mass, 0.03 * mass);
 }
 
 // The verdict is a Stribeck friction of `joint` (from 1) alone, its excess within 10 % of

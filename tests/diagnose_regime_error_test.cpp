@@ -59,8 +59,8 @@ Errors fitted(const OneJointLog& log) {
   const Eigen::VectorXd weight = Eigen::VectorXd::Ones(1);
   const Eigen::VectorXd away = Eigen::VectorXd::Ones(log.residual.size());
   const diagnose::Folds folds = diagnose::Folds::even(log.residual.size());
-  const auto fit = diagnose::fit_together(log.effects, log.residual, weight, folds, away, 1);
-  const Eigen::VectorXd regimes = diagnose::regime_error(log.effects, log.residual, weight, folds, away, 1,
+  const auto fit = diagnose::fit_together(log.effects, log.residual, weight, folds, away, away, 1);
+  const Eigen::VectorXd regimes = diagnose::regime_error(log.effects, log.residual, weight, folds, away, away, 1,
                                                          diagnose::regime_splits(log.data, away));
   return {fit.theta[0], fit.theta_error[0], regimes[0]};
 }
@@ -102,8 +102,8 @@ TEST(RegimeError, AHalfWhereAColumnIsNextToNothingSaysNothingOfIt) {
   const Eigen::VectorXd weight = Eigen::VectorXd::Ones(1);
   const Eigen::VectorXd away = Eigen::VectorXd::Ones(log.residual.size());
   const diagnose::Folds folds = diagnose::Folds::even(log.residual.size());
-  const auto fit = diagnose::fit_together(log.effects, log.residual, weight, folds, away, 1);
-  const Eigen::VectorXd regimes = diagnose::regime_error(log.effects, log.residual, weight, folds, away, 1,
+  const auto fit = diagnose::fit_together(log.effects, log.residual, weight, folds, away, away, 1);
+  const Eigen::VectorXd regimes = diagnose::regime_error(log.effects, log.residual, weight, folds, away, away, 1,
                                                          diagnose::regime_splits(log.data, away));
   // Compared whatever the support, the fast half's fit made the stated error 3e11 N m.
   EXPECT_NEAR(fit.theta[1], kExcess, 3 * fit.theta_error[1]);

@@ -186,15 +186,15 @@ Eigen::VectorXd velocity_error(const Dataset& d) {
 
 Eigen::VectorXd friction_sign_velocity(const Dataset& d) { return velocity_error(d).cwiseMax(kSignVelocity); }
 
-Eigen::VectorXd away_from_zero_velocity(const Dataset& d) {
+Eigen::VectorXd away_from_zero_velocity(const Dataset& d, double leak) {
   const Eigen::VectorXd band = (2.0 * velocity_error(d)).cwiseMax(kTurnOverBand);
   Eigen::MatrixXd near_zero = Eigen::MatrixXd::Zero(d.samples() * d.n, 1);
   for (Eigen::Index s = 0; s < d.samples(); ++s) {
     for (Eigen::Index j = 0; j < d.n; ++j) near_zero(s * d.n + j, 0) = std::abs(d.qd(s, j)) < band[j] ? 1.0 : 0.0;
   }
   // Both passes: the band spreads into the residual as the friction's sign does.
-  const Eigen::VectorXd leak = d.condition(d.prefilter(near_zero)).col(0);
-  return (leak.array().abs() <= kBandLeak).cast<double>().matrix();
+  const Eigen::VectorXd spread = d.condition(d.prefilter(near_zero)).col(0);
+  return (spread.array().abs() <= leak).cast<double>().matrix();
 }
 
 Eigen::VectorXd torque_weights(const Eigen::VectorXd& torque_rms) {

@@ -221,6 +221,7 @@ Diagnosis diagnose(const Dataset& d, const pipeline::Derivation& derivation) {
   out.folds = folds_sharing_bursts(r0, weight, n, d.step);
   const Folds& folds = out.folds;
   out.away = away_from_zero_velocity(d);
+  out.far = away_from_zero_velocity(d, kStaticFrictionLeak);
   const Eigen::VectorXd& away = out.away;
   StaticHolds holds{in_long_rests(d, away), std::vector<bool>(static_cast<std::size_t>(n), false)};
   std::deque<Effect> effects;  // stable addresses: candidates point at their effect; a search adds to it

@@ -82,6 +82,9 @@ struct Diagnosis {
   Eigen::VectorXd weight;
   Folds folds;           // the cross-validation's blocks (folds_sharing_bursts of the residual)
   Eigen::VectorXd away;  // away_from_zero_velocity of the data: where friction columns are fitted
+  // away_from_zero_velocity at kStaticFrictionLeak: the rows that a static friction held near zero
+  // velocity does not reach through the filter (fit_together).
+  Eigen::VectorXd far;
   // 1 on the stacked rows the selection scores its candidates on: all but the holds (in_long_rests)
   // of joints where a friction is evident and its static part holds at rest (see diagnose).
   Eigen::VectorXd scored;
@@ -102,13 +105,16 @@ FittedColumns fitted_columns(const std::vector<Effect>& effects, const Eigen::Ve
 /// friction columns are fitted where the velocity is away from zero (`away`) and predict on every
 /// row. Near zero a log's friction turns over in its own way, which would bend a Coulomb term
 /// fitted there (a rigid plant's friction regularised over 10 mrad/s read 11 % low). A joint's rows
-/// near zero whose held-out mean square after a first fit is over twice that away from zero hold
-/// a static friction, not noise: the fit is made again without them. With `rows` (stacked, 0 or
+/// near zero whose held-out mean square after a first fit is over that away from zero hold
+/// a static friction, not noise: the fit is made again without them, nor the rows around them
+/// that the filter spreads it into (`far` 0: away_from_zero_velocity at kStaticFrictionLeak).
+/// With `rows` (stacked, 0 or
 /// 1), only the rows marked 1 are fitted on. `unbiased`: the coefficients (theta, its folds and
 /// error) are read free of the logged torque's noise where columns are made from it
 /// (Effect::torque_noise); the held-out residual is then the corrected fits', a worse predictor.
 CrossValidation fit_together(const std::vector<Effect>& effects, const Eigen::VectorXd& residual,
                              const Eigen::VectorXd& weight, const Folds& folds, const Eigen::VectorXd& away,
-                             Eigen::Index n, const Eigen::VectorXd* rows = nullptr, bool unbiased = false);
+                             const Eigen::VectorXd& far, Eigen::Index n, const Eigen::VectorXd* rows = nullptr,
+                             bool unbiased = false);
 
 }  // namespace dyncc::diagnose

@@ -51,7 +51,7 @@ std::vector<RegimeSplit> regime_splits(const Dataset& d, const Eigen::VectorXd& 
 
 Eigen::VectorXd regime_error(const std::vector<Effect>& effects, const Eigen::VectorXd& residual,
                              const Eigen::VectorXd& weight, const Folds& folds, const Eigen::VectorXd& away,
-                             Eigen::Index n, const std::vector<RegimeSplit>& splits) {
+                             const Eigen::VectorXd& far, Eigen::Index n, const std::vector<RegimeSplit>& splits) {
   const FittedColumns fitted = fitted_columns(effects, away);
   const Eigen::Index columns = fitted.all.cols();
   const Eigen::MatrixXd squares = fitted.all.cwiseProduct(fitted.fitted).array().square().matrix();  // as fitted
@@ -59,8 +59,8 @@ Eigen::VectorXd regime_error(const std::vector<Effect>& effects, const Eigen::Ve
   const Eigen::RowVectorXd whole = w2.transpose() * squares;
   Eigen::VectorXd error = Eigen::VectorXd::Zero(columns);
   for (const RegimeSplit& split : splits) {
-    const CrossValidation lower = fit_together(effects, residual, weight, folds, away, n, &split.lower);
-    const CrossValidation upper = fit_together(effects, residual, weight, folds, away, n, &split.upper);
+    const CrossValidation lower = fit_together(effects, residual, weight, folds, away, far, n, &split.lower);
+    const CrossValidation upper = fit_together(effects, residual, weight, folds, away, far, n, &split.upper);
     const Eigen::RowVectorXd in_lower = w2.cwiseProduct(split.lower).transpose() * squares;
     const Eigen::RowVectorXd in_upper = w2.cwiseProduct(split.upper).transpose() * squares;
     for (Eigen::Index k = 0; k < columns; ++k) {

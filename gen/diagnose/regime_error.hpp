@@ -30,6 +30,6 @@ std::vector<RegimeSplit> regime_splits(const Dataset& d, const Eigen::VectorXd& 
 /// 0 where the halves agree within their noise.
 Eigen::VectorXd regime_error(const std::vector<Effect>& effects, const Eigen::VectorXd& residual,
                              const Eigen::VectorXd& weight, const Folds& folds, const Eigen::VectorXd& away,
-                             Eigen::Index n, const std::vector<RegimeSplit>& splits);
+                             const Eigen::VectorXd& far, Eigen::Index n, const std::vector<RegimeSplit>& splits);
 
 }  // namespace dyncc::diagnose

@@ -12,7 +12,7 @@ SelectedResiduals selected_residuals(const Dataset& data, const Diagnosis& diagn
 
   // The effects exactly as the selection accepted them, with its weights and fitting rows.
   const CrossValidation cv = fit_together(diagnosis.accepted_effects, data.residual, diagnosis.weight, diagnosis.folds,
-                                          diagnosis.away, data.n);
+                                          diagnosis.away, diagnosis.far, data.n);
   out.heldout = cv.heldout;
 
   Eigen::Index at = 0;
