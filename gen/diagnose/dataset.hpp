@@ -127,11 +127,11 @@ inline constexpr double kBandLeak = 0.05;
 /// holds there is any torque within +-fc, and the filter spreads it into the rows around: a
 /// slow reversal of a loaded joint that sticks for a moment spreads a bias its load's columns
 /// take up. The joint fit leaves out every row of such a joint that the band reaches beyond this
-/// share. At kBandLeak, 10 g loads on the MuJoCo plant's tele-operation logs (which sticks: its
-/// friction is a constraint) read 4.6 % light at 1 kHz and 4.1 % at 500 Hz (12 runs each; 9 and 8
-/// of them beyond the bench's 3 %); at this, 1.3 % and 1.1 % (2 and 1 beyond). Without the
-/// plant's dry friction they read +0.7 %. At 200 Hz the plant's friction is softer (its step is
-/// 5 ms) and such loads read -0.1 % at kBandLeak and -1.6 % at this (1 and 5 of 11 beyond).
+/// share, unless a friction effect is in the fit (fit_together). At kBandLeak, 10 g loads on the MuJoCo plant's
+/// tele-operation logs (which sticks: its friction is a constraint) read 4.6 % light at 1 kHz and 4.1 % at 500 Hz (12
+/// runs each; 9 and 8 of them beyond the bench's 3 %); at this, 1.3 % and 1.1 % (2 and 1 beyond). Without the plant's
+/// dry friction they read +0.7 %. At 200 Hz the plant's friction is softer (its step is 5 ms) and such loads read -0.1
+/// % at kBandLeak and -1.6 % at this (1 and 5 of 11 beyond).
 inline constexpr double kStaticFrictionLeak = 0.001;
 Eigen::VectorXd away_from_zero_velocity(const Dataset& d, double leak = kBandLeak);
 
