@@ -566,14 +566,15 @@ std::vector<bool> worse_at_rest(const Eigen::VectorXd& heldout, const Eigen::Vec
 
 namespace {
 
-// 1 on every row but those of a joint worse at rest that the band near zero velocity reaches
-// beyond kStaticFrictionLeak (`far` 0; see fit_together).
+// 1 on every row but those of a joint worse at rest (judged on `away`) that `clear` marks 0: the
+// rows the band near zero velocity reaches (`away` itself, or `far`, which lies within it; see
+// fit_together).
 Eigen::VectorXd rows_without_static_friction(const Eigen::VectorXd& heldout, const Eigen::VectorXd& away,
-                                             const Eigen::VectorXd& far, Eigen::Index n) {
+                                             const Eigen::VectorXd& clear, Eigen::Index n) {
   const std::vector<bool> holds = worse_at_rest(heldout, away, nullptr, n);
   Eigen::VectorXd kept = Eigen::VectorXd::Ones(heldout.size());
   for (Eigen::Index r = 0; r < heldout.size(); ++r) {
-    if ((away[r] == 0 || far[r] == 0) && holds[static_cast<std::size_t>(r % n)]) kept[r] = 0;
+    if (clear[r] == 0 && holds[static_cast<std::size_t>(r % n)]) kept[r] = 0;
   }
   return kept;
 }
