@@ -418,6 +418,20 @@ TEST(BlindBenchCase, KraftPayloadBesideALargeOffsetIsReadWithTheSecantMadeAtTheJ
               {{"mass", payload.size, 0.03 * payload.size}, {"offset2", offset.size, 0.1 * offset.size}});
 }
 
+// Case 4 of seed 379 (PUMA 560, Fourier excitation, 500 Hz): a 17.3 ms sensor delay beside a
+// rotor inertia of joint 6 of 0.0375. The delay lags the rotor's torque as it lags the model's:
+// the torque is ia6 qdd6 at the true positions, which the logged ones reach `delay` later. With
+// the delay's column the model's torque alone, the rotor's lag (ia6 times the delay times the
+// jerk) had only the delay's column on joint 6 to go to, and read 18.45 ms (+0.56 samples) and
+// ia6 1.8 % light; seed 509 case 4, the same pair at 1 kHz, 1.24 samples long. The column now
+// carries the other effects' fitted torque, lagged alike (settle.cpp, torque_the_positions_lag).
+TEST(BlindBenchCase, PumaDelayLagsTheRotorInertiaBesideIt) {
+  const Injection delay{.effect = "sensor_delay", .joint = 3, .size = 0.017330794983432568};
+  const Injection rotor{.effect = "rotor_inertia", .joint = 5, .size = 0.03754934974843335};
+  expect_case(diagnosed("puma560", {delay, rotor}, 500, 379U * 1000U + 4U), "sensor_delay", {},
+              {{"delay", delay.size, 0.0005}, {"ia6", rotor.size, 0.01 * rotor.size}});
+}
+
 // Case 59 of the blind seed 139 (Panda, 1 kHz): a torque gain of 1.22 on joint 7 beside a 14 ms
 // delay. Joint 7's torque is mostly the drive's friction, so at the first step a Coulomb friction
 // of joint 7 ties with the gain and led ("coulomb_friction or torque_gain"); after the delay, the

@@ -1,5 +1,6 @@
 #include "diagnose/shifted_positions.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <memory>
 #include <numbers>
@@ -222,6 +223,35 @@ Eigen::MatrixXd delay_secant(const Dataset& d, double delay) {
     }
   }
   return d.condition(secant);
+}
+
+Eigen::VectorXd advanced_in_time(const Dataset& d, const Eigen::VectorXd& column, double lead) {
+  const Eigen::Index n = d.n;
+  Eigen::VectorXd out = column;
+  Eigen::Index first = 0;  // the segment's first analysis row
+  for (const Dataset::Segment& g : d.segments) {
+    const auto rows = static_cast<Eigen::Index>(g.keep.size());
+    if (rows >= 2) {
+      const double step = static_cast<double>(g.keep[1] - g.keep[0]) / g.rate;
+      auto value = [&](Eigen::Index k, Eigen::Index j) { return column[(first + k) * n + j]; };
+      auto slope = [&](Eigen::Index k, Eigen::Index j) {  // per row
+        const Eigen::Index before = std::max<Eigen::Index>(k - 1, 0), after = std::min(k + 1, rows - 1);
+        return (value(after, j) - value(before, j)) / static_cast<double>(after - before);
+      };
+      for (Eigen::Index k = 0; k < rows; ++k) {
+        const double position = static_cast<double>(k) + lead / step;
+        if (position < 0 || position > static_cast<double>(rows - 1)) continue;
+        const auto at = std::min(static_cast<Eigen::Index>(std::floor(position)), rows - 2);
+        const double u = position - static_cast<double>(at), u2 = u * u, u3 = u2 * u;
+        for (Eigen::Index j = 0; j < n; ++j) {
+          out[(first + k) * n + j] = (2 * u3 - 3 * u2 + 1) * value(at, j) + (u3 - 2 * u2 + u) * slope(at, j) +
+                                     (-2 * u3 + 3 * u2) * value(at + 1, j) + (u3 - u2) * slope(at + 1, j);
+        }
+      }
+    }
+    first += rows;
+  }
+  return out;
 }
 
 void fit_delay_column(const Dataset& d, Effect& effect) {

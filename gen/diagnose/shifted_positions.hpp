@@ -63,4 +63,10 @@ bool delay_needs_secant(const Dataset& d, double delay);
 /// The sensor delay's secant column at `delay` (S*n x 1, conditioned), as fit_delay_column makes it.
 Eigen::MatrixXd delay_secant(const Dataset& d, double delay);
 
+/// A column of the analysis rows (A*n) advanced in time by `lead` seconds along each log's rows:
+/// cubic Hermite between them, with central differences as the slopes; a row whose time plus
+/// `lead` falls outside its log keeps its own value. The analysis rows are eight per period of the
+/// filter's cut-off, so a conditioned column is smooth between them.
+Eigen::VectorXd advanced_in_time(const Dataset& d, const Eigen::VectorXd& column, double lead);
+
 }  // namespace dyncc::diagnose
