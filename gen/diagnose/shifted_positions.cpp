@@ -71,6 +71,13 @@ Eigen::VectorXd secant(const Dataset& d, const ModelTorque& model, const Shift& 
   return column;
 }
 
+// The cubic Hermite interpolant at u in [0, 1] between values p0 and p1 with slopes m0 and m1 (per
+// unit of u).
+double hermite(double p0, double m0, double p1, double m1, double u) {
+  const double u2 = u * u, u3 = u2 * u;
+  return (2 * u3 - 3 * u2 + 1) * p0 + (u3 - 2 * u2 + u) * m0 + (-2 * u3 + 3 * u2) * p1 + (u3 - u2) * m1;
+}
+
 // Column j of `values` (one segment's rows at `rate`) at the time of row s plus `lead` seconds,
 // by cubic Hermite interpolation with the column's time derivative `slope`; held at the ends.
 double shifted_in_time(const Eigen::MatrixXd& values, const Eigen::MatrixXd& slope, Eigen::Index begin,
@@ -80,11 +87,9 @@ double shifted_in_time(const Eigen::MatrixXd& values, const Eigen::MatrixXd& slo
   if (position <= 0) return values(begin, j);
   if (position >= last) return values(end - 1, j);
   const auto k = static_cast<Eigen::Index>(std::floor(position));
-  const double u = position - static_cast<double>(k), h = 1.0 / rate;
-  const double p0 = values(begin + k, j), p1 = values(begin + k + 1, j);
-  const double m0 = slope(begin + k, j) * h, m1 = slope(begin + k + 1, j) * h;
-  const double u2 = u * u, u3 = u2 * u;
-  return (2 * u3 - 3 * u2 + 1) * p0 + (u3 - 2 * u2 + u) * m0 + (-2 * u3 + 3 * u2) * p1 + (u3 - u2) * m1;
+  const double h = 1.0 / rate;
+  return hermite(values(begin + k, j), slope(begin + k, j) * h, values(begin + k + 1, j), slope(begin + k + 1, j) * h,
+                 position - static_cast<double>(k));
 }
 
 // The columns' weighted least-squares coefficients on the residual, with the fits' weights.
@@ -242,10 +247,9 @@ Eigen::VectorXd advanced_in_time(const Dataset& d, const Eigen::VectorXd& column
         const double position = static_cast<double>(k) + lead / step;
         if (position < 0 || position > static_cast<double>(rows - 1)) continue;
         const auto at = std::min(static_cast<Eigen::Index>(std::floor(position)), rows - 2);
-        const double u = position - static_cast<double>(at), u2 = u * u, u3 = u2 * u;
+        const double u = position - static_cast<double>(at);
         for (Eigen::Index j = 0; j < n; ++j) {
-          out[(first + k) * n + j] = (2 * u3 - 3 * u2 + 1) * value(at, j) + (u3 - 2 * u2 + u) * slope(at, j) +
-                                     (-2 * u3 + 3 * u2) * value(at + 1, j) + (u3 - u2) * slope(at + 1, j);
+          out[(first + k) * n + j] = hermite(value(at, j), slope(at, j), value(at + 1, j), slope(at + 1, j), u);
         }
       }
     }
