@@ -423,7 +423,7 @@ TEST(BlindBenchCase, KraftPayloadBesideALargeOffsetIsReadWithTheSecantMadeAtTheJ
 // the torque is ia6 qdd6 at the true positions, which the logged ones reach `delay` later. With
 // the delay's column the model's torque alone, the rotor's lag (ia6 times the delay times the
 // jerk) had only the delay's column on joint 6 to go to, and read 18.45 ms (+0.56 samples) and
-// ia6 1.8 % light; seed 509 case 4, the same pair at 1 kHz, 1.24 samples long. The column now
+// ia6 1.9 % light; seed 509 case 4, the same pair at 1 kHz, 1.24 samples long. The column now
 // carries the other effects' fitted torque, lagged alike (settle.cpp, torque_the_positions_lag).
 TEST(BlindBenchCase, PumaDelayLagsTheRotorInertiaBesideIt) {
   const Injection delay{.effect = "sensor_delay", .joint = 3, .size = 0.017330794983432568};

@@ -482,7 +482,7 @@ Eigen::VectorXd torque_the_positions_lag(const std::vector<Effect>& effects, con
 // the other effects' fitted part (torque_the_positions_lag), both advanced by the fitted delay. With
 // the model's alone, a rotor inertia's lag (ia times the delay times the jerk) had only the delay's
 // column on its joint to go to: a 17.3 ms delay beside a rotor inertia of the PUMA's joint 6 read
-// 18.45 ms and the inertia 1.8 % light (seed 379 case 4; now 17.42 ms and -0.1 %), the same pair
+// 18.45 ms and the inertia 1.9 % light (seed 379 case 4; now 17.42 ms and -0.1 %), the same pair
 // at 1 kHz 1.24 samples long (seed 509 case 4; now 0.02). Over the 66 logs of 20 benches where a
 // delay is read beside another effect, the delay's mean error went from +0.031 samples to -0.002
 // and its mean size from 0.090 to 0.063.
