@@ -28,6 +28,14 @@ struct ShapeValue {
   double value = 0, resolution = 0;
 };
 
+/// A change of the description's standard parameters (NumericModel's order) that an effect's
+/// fitted values mean (a load on the payload link), and where it holds: `gate` keeps the
+/// evaluation rows (S*n x k) of the stretch it holds in and zeroes the others (empty: everywhere).
+struct StandardChange {
+  Eigen::VectorXd values;
+  std::function<Eigen::MatrixXd(const Eigen::MatrixXd&)> gate;
+};
+
 struct Effect {
   std::string name;                     // the JSON vocabulary: coulomb_friction, payload, ...
   Eigen::MatrixXd columns;              // S*n x k
@@ -46,9 +54,13 @@ struct Effect {
   std::shared_ptr<const NoiseDraws> torque_noise;
   // An effect not linear in its parameter (a sensor delay, a shift of the positions) has columns
   // that are secants made at a first fit. This makes joint j's column (-1: a shared one) again at
-  // theta, conditioned (the tangent where that serves). It refers to the Dataset the effect was
-  // made from: called while the diagnosis runs (settle.cpp), not after. Empty for the others.
-  std::function<Eigen::VectorXd(int joint, double theta)> secant_at;
+  // theta, conditioned (the tangent where that serves); a shift's moves `changes` (the other
+  // selected effects' loads) with the model's. It refers to the Dataset the effect was made from:
+  // called while the diagnosis runs (settle.cpp), not after. Empty for the others.
+  std::function<Eigen::VectorXd(int joint, double theta, const std::vector<StandardChange>& changes)> secant_at;
+  // An effect that is a change of the standard parameters (a load): that change at `theta`, its
+  // columns' coefficients. Empty for the others.
+  std::function<StandardChange(const Eigen::VectorXd& theta)> standard_change;
 };
 
 /// A backlash shows only on a joint whose transmitted torque turns over: with its less common sign

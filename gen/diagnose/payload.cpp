@@ -2,6 +2,9 @@
 
 #include <array>
 #include <cmath>
+#include <functional>
+#include <string>
+#include <vector>
 
 #include "diagnose/payload_window.hpp"
 
@@ -29,11 +32,17 @@ Eigen::MatrixXd standard_columns(const Dataset& d, const pipeline::Derivation& d
   return all;
 }
 
-// Point mass at c: [m, m cx, m cy, m cz] columns, the mass column carrying the second moments.
-Eigen::MatrixXd point_mass(const Eigen::MatrixXd& all, const Eigen::Vector3d& c) {
-  Eigen::Matrix<double, 6, 1> second;  // XX, XY, XZ, YY, YZ, ZZ of a unit mass at c (tensor entries)
+// XX, XY, XZ, YY, YZ, ZZ of a unit mass at c (tensor entries).
+Eigen::Matrix<double, 6, 1> second_moments(const Eigen::Vector3d& c) {
+  Eigen::Matrix<double, 6, 1> second;
   second << c.y() * c.y() + c.z() * c.z(), -c.x() * c.y(), -c.x() * c.z(), c.x() * c.x() + c.z() * c.z(),
       -c.y() * c.z(), c.x() * c.x() + c.y() * c.y();
+  return second;
+}
+
+// Point mass at c: [m, m cx, m cy, m cz] columns, the mass column carrying the second moments.
+Eigen::MatrixXd point_mass(const Eigen::MatrixXd& all, const Eigen::Vector3d& c) {
+  const Eigen::Matrix<double, 6, 1> second = second_moments(c);
   Eigen::MatrixXd out(all.rows(), 4);
   out.col(0) = all.col(0) + all.rightCols(6) * second;
   out.rightCols(3) = all.middleCols(1, 3);
@@ -113,6 +122,29 @@ Effect payload_effect(const Eigen::MatrixXd& conditioned, const Eigen::Vector3d&
 
 }  // namespace
 
+void PayloadPlacer::set_standard_change(Effect& e, const Eigen::Vector3d& point, const PayloadWindow* window) const {
+  const Eigen::Matrix<double, 6, 1> second = second_moments(point);
+  std::function<Eigen::MatrixXd(const Eigen::MatrixXd&)> gate;
+  if (window != nullptr) gate = [&d = d_, w = *window](const Eigen::MatrixXd& rows) { return gated(d, rows, w); };
+  e.standard_change = [of = of_, count = parameter_count_, second, names = e.parameters,
+                       gate](const Eigen::VectorXd& theta) -> StandardChange {
+    StandardChange out{Eigen::VectorXd::Zero(count), gate};
+    auto add = [&](std::size_t k, double value) {
+      if (of[k] >= 0) out.values[of[k]] += value;
+    };
+    for (std::size_t c = 0; c < names.size(); ++c) {
+      const double value = theta[static_cast<Eigen::Index>(c)];
+      if (names[c] == "mass") {
+        add(0, value);
+        for (std::size_t k = 0; k < 6; ++k) add(4 + k, value * second[static_cast<Eigen::Index>(k)]);
+      } else if (names[c] == "mx" || names[c] == "my" || names[c] == "mz") {
+        add(1 + static_cast<std::size_t>(names[c][1] - 'x'), value);
+      }
+    }
+    return out;
+  };
+}
+
 PayloadPlacer::PayloadPlacer(const Dataset& d, const pipeline::Derivation& derivation, const Eigen::VectorXd& rests)
     : d_(d),
       all_(standard_columns(d, derivation)),
@@ -123,6 +155,8 @@ PayloadPlacer::PayloadPlacer(const Dataset& d, const pipeline::Derivation& deriv
       // left out, 17.5 s and 9.97 g: blind seed 443 case 57).
       scored_(1.0 - rests.array()) {
   if (all_.size() == 0) return;
+  of_ = derivation.model.params.of_link[static_cast<std::size_t>(payload_link(derivation))];
+  parameter_count_ = d.standard.cols();
   conditioned_ = d.condition(all_);
   resolved_ =
       resolved_axes(point_mass(conditioned_, Eigen::Vector3d::Zero()), stacked_weights(weight_, conditioned_.rows()));
@@ -131,11 +165,15 @@ PayloadPlacer::PayloadPlacer(const Dataset& d, const pipeline::Derivation& deriv
 void PayloadPlacer::add_effects(const Eigen::VectorXd& residual, const Eigen::MatrixXd& fixed,
                                 std::vector<Effect>& out) const {
   if (all_.size() == 0) return;
-  out.push_back(payload_effect(conditioned_, load_point(conditioned_, residual, fixed, weight_, resolved_), resolved_));
+  const Eigen::Vector3d everywhere = load_point(conditioned_, residual, fixed, weight_, resolved_);
+  out.push_back(payload_effect(conditioned_, everywhere, resolved_));
+  set_standard_change(out.back(), everywhere, nullptr);
   const auto window = find_payload_window(d_, out.back().columns, residual, weight_, scored_, fixed);
   if (!window) return;
   const Eigen::MatrixXd carried = d_.condition(gated(d_, all_, *window));
-  Effect e = payload_effect(carried, load_point(carried, residual, fixed, weight_, resolved_), resolved_);
+  const Eigen::Vector3d point = load_point(carried, residual, fixed, weight_, resolved_);
+  Effect e = payload_effect(carried, point, resolved_);
+  set_standard_change(e, point, &*window);
   if (std::isfinite(window->start)) e.shape.push_back({"picked_up_at", window->start, d_.step});
   if (std::isfinite(window->end)) e.shape.push_back({"put_down_at", window->end, d_.step});
   if (d_.logs.size() > 1) e.shape.push_back({"log", static_cast<double>(window->log + 1), 0.0});

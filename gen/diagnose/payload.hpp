@@ -12,6 +12,7 @@
 
 #include "diagnose/dataset.hpp"
 #include "diagnose/effects.hpp"
+#include "diagnose/payload_window.hpp"
 
 namespace dyncc::diagnose {
 
@@ -30,7 +31,13 @@ class PayloadPlacer {
   void add_effects(const Eigen::VectorXd& residual, const Eigen::MatrixXd& fixed, std::vector<Effect>& out) const;
 
  private:
+  // A placed load's effect told what its fitted values mean in the standard parameters (at its
+  // point, over `window`'s rows or everywhere).
+  void set_standard_change(Effect& e, const Eigen::Vector3d& point, const PayloadWindow* window) const;
+
   const Dataset& d_;
+  std::array<int, 10> of_{};  // the payload link's standard parameters' indices (-1: none)
+  Eigen::Index parameter_count_ = 0;
   Eigen::MatrixXd all_;  // the link's ten standard columns (evaluation rows); empty: no payload link
   Eigen::MatrixXd conditioned_;
   Eigen::VectorXd weight_, scored_;

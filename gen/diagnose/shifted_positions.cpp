@@ -29,6 +29,9 @@ class ModelTorque {
  public:
   explicit ModelTorque(const pipeline::Derivation& derivation)
       : model_(*derivation.numeric), nominal_(model_.nominal_standard_values()) {}
+  ModelTorque(const dyn::NumericModel& model, Eigen::VectorXd values) : model_(model), nominal_(std::move(values)) {}
+  // The same model with other standard parameter values (a load's alone: its torque).
+  [[nodiscard]] ModelTorque with_values(const Eigen::VectorXd& values) const { return {model_, values}; }
   // At many states (v = qd), in one batch; masses, if asked for, their H.
   [[nodiscard]] std::vector<Eigen::VectorXd> at(std::span<const dyn::State> states,
                                                 std::vector<Eigen::MatrixXd>* masses = nullptr) const {
@@ -112,9 +115,18 @@ struct ShiftSecants {
     const double largest = std::abs(theta) * reach[j];
     return largest > kLinearShift && largest < kLargestShift;
   }
-  // Joint j's secant column at theta, conditioned.
-  [[nodiscard]] Eigen::VectorXd secant_at(Eigen::Index j, double theta) const {
-    return d.condition(secant(d, model, shift, tau, j, theta)).col(0);
+  // Joint j's secant column at theta, conditioned, with each of `changes` (a load) moved by the
+  // shift as the model is: the load's torque is computed from the measured positions too.
+  [[nodiscard]] Eigen::VectorXd secant_at(Eigen::Index j, double theta,
+                                          const std::vector<StandardChange>& changes = {}) const {
+    Eigen::MatrixXd column = secant(d, model, shift, tau, j, theta);
+    for (const StandardChange& change : changes) {
+      const Eigen::VectorXd stacked = d.standard * change.values;  // the load's torque, unshifted
+      const Eigen::MatrixXd load_tau = Eigen::Map<const Eigen::MatrixXd>(stacked.data(), d.n, d.samples()).transpose();
+      const Eigen::MatrixXd moved = secant(d, model.with_values(change.values), shift, load_tau, j, theta);
+      column += change.gate ? change.gate(moved) : moved;
+    }
+    return d.condition(column).col(0);
   }
 };
 
@@ -206,9 +218,13 @@ void fit_shift_columns(const Dataset& d, const pipeline::Derivation& derivation,
     if (shifted.empty()) break;
     for (const Eigen::Index j : shifted) effect.columns.col(j) = made->secant_at(j, theta[j]);
   }
-  effect.secant_at = [made](int joint, double theta) -> Eigen::VectorXd {
+  effect.secant_at = [made](int joint, double theta, const std::vector<StandardChange>& changes) -> Eigen::VectorXd {
     const auto j = static_cast<Eigen::Index>(joint);
-    return made->needs_secant(j, theta) ? made->secant_at(j, theta) : Eigen::VectorXd(made->tangents.col(j));
+    // Beside a load the secant also where the tangent would serve: the tangent is the model's alone.
+    const bool moves_a_load =
+        !changes.empty() && theta != 0 && made->reach[j] > 0 && std::abs(theta) * made->reach[j] < kLargestShift;
+    if (moves_a_load || made->needs_secant(j, theta)) return made->secant_at(j, theta, changes);
+    return made->tangents.col(j);
   };
 }
 
@@ -265,7 +281,7 @@ void fit_delay_column(const Dataset& d, Effect& effect) {
     if (!delay_needs_secant(d, delay)) break;
     effect.columns = delay_secant(d, delay);
   }
-  effect.secant_at = [&d, tangent](int, double delay) -> Eigen::VectorXd {
+  effect.secant_at = [&d, tangent](int, double delay, const std::vector<StandardChange>&) -> Eigen::VectorXd {
     return delay_needs_secant(d, delay) ? Eigen::VectorXd(delay_secant(d, delay).col(0)) : tangent;
   };
 }
