@@ -36,6 +36,15 @@ struct StandardChange {
   std::function<Eigen::MatrixXd(const Eigen::MatrixXd&)> gate;
 };
 
+/// What the other selected effects fit, beside which an effect's columns are made again
+/// (Effect::secant_at): their torque computed from the measured positions (analysis rows, A*n;
+/// empty: none), which a delay lags as it lags the model's, and the loads among them, which a
+/// shift of the positions moves as it moves the model.
+struct BesideEffects {
+  Eigen::VectorXd from_positions;
+  std::vector<StandardChange> loads;
+};
+
 struct Effect {
   std::string name;                     // the JSON vocabulary: coulomb_friction, payload, ...
   Eigen::MatrixXd columns;              // S*n x k
@@ -54,10 +63,10 @@ struct Effect {
   std::shared_ptr<const NoiseDraws> torque_noise;
   // An effect not linear in its parameter (a sensor delay, a shift of the positions) has columns
   // that are secants made at a first fit. This makes joint j's column (-1: a shared one) again at
-  // theta, conditioned (the tangent where that serves); a shift's moves `changes` (the other
-  // selected effects' loads) with the model's. It refers to the Dataset the effect was made from:
-  // called while the diagnosis runs (settle.cpp), not after. Empty for the others.
-  std::function<Eigen::VectorXd(int joint, double theta, const std::vector<StandardChange>& changes)> secant_at;
+  // theta, conditioned (the tangent where that serves), beside the other selected effects (a
+  // delay lags their torque, a shift moves their loads). It refers to the Dataset the effect was
+  // made from: called while the diagnosis runs (settle.cpp), not after. Empty for the others.
+  std::function<Eigen::VectorXd(int joint, double theta, const BesideEffects& beside)> secant_at;
   // An effect that is a change of the standard parameters (a load): that change at `theta`, its
   // columns' coefficients. Empty for the others.
   std::function<StandardChange(const Eigen::VectorXd& theta)> standard_change;

@@ -13,7 +13,6 @@
 #include "diagnose/plausibility.hpp"
 #include "diagnose/regime_error.hpp"
 #include "diagnose/selection.hpp"
-#include "diagnose/shifted_positions.hpp"
 
 namespace dyncc::diagnose {
 namespace {
@@ -493,27 +492,23 @@ Eigen::VectorXd torque_the_positions_lag(const std::vector<Effect>& effects, con
 // +0.01 %), a 0.173 rad offset of the Kraft's joint 2 beside a 47 g load +7.7 % (439/24; now
 // -0.04 %, the load +1.6 % -> +0.2 %), a 154 g PUMA load beside a spring of joint 3 +3.0 % (383/19;
 // now +0.25 %).
-void relinearise_secants(Diagnosis& out, const Dataset& d, const Eigen::VectorXd& r0, const Eigen::VectorXd& weight,
-                         Eigen::Index n) {
+void relinearise_secants(Diagnosis& out, const Eigen::VectorXd& r0, const Eigen::VectorXd& weight, Eigen::Index n) {
   const bool any = std::any_of(out.accepted_effects.begin(), out.accepted_effects.end(),
                                [](const Effect& e) { return static_cast<bool>(e.secant_at); });
   for (int pass = 0; any && pass < 2; ++pass) {
     const Eigen::VectorXd theta = fit_together(out.accepted_effects, r0, weight, out.folds, out.away, out.far, n).theta;
-    const Eigen::VectorXd lagging = torque_the_positions_lag(out.accepted_effects, theta);
-    std::vector<StandardChange> loads;
+    BesideEffects beside{torque_the_positions_lag(out.accepted_effects, theta), {}};
     Eigen::Index at = 0;
     for (const Effect& e : out.accepted_effects) {
       const Eigen::VectorXd mine = theta.segment(at, e.columns.cols());
-      if (e.standard_change && mine.allFinite()) loads.push_back(e.standard_change(mine));
+      if (e.standard_change && mine.allFinite()) beside.loads.push_back(e.standard_change(mine));
       at += e.columns.cols();
     }
     at = 0;
     for (Effect& e : out.accepted_effects) {
       for (Eigen::Index c = 0; e.secant_at && c < e.columns.cols(); ++c) {
-        if (!std::isfinite(theta[at + c])) continue;
-        e.columns.col(c) = e.secant_at(e.joint_of[static_cast<std::size_t>(c)], theta[at + c], loads);
-        if (e.family == "sensor_delay" && theta[at + c] != 0)
-          e.columns.col(c) += (advanced_in_time(d, lagging, theta[at + c]) - lagging) / theta[at + c];
+        if (std::isfinite(theta[at + c]))
+          e.columns.col(c) = e.secant_at(e.joint_of[static_cast<std::size_t>(c)], theta[at + c], beside);
       }
       at += e.columns.cols();
     }
@@ -841,7 +836,7 @@ void settle_selection(Diagnosis& out, const Dataset& d, const std::deque<Effect>
   const std::vector<RegimeSplit> splits = regime_splits(d, out.away);
   rechoose_points(out, effects, r0, out.weight, n, splits);
   one_effect_for_two_steps(out, step_alternatives, r0, out.weight, n, step_parts);
-  relinearise_secants(out, d, r0, out.weight, n);
+  relinearise_secants(out, r0, out.weight, n);
   refit_together(out, r0, out.weight, n, splits, std::move(step_parts));
   // Judged again as the joint fit reads them (a step judged each beside the effects before it
   // only): a payload that stood in for a torque gain read 0.09 g at 17 m beside a Stribeck

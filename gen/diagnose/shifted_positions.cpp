@@ -218,12 +218,12 @@ void fit_shift_columns(const Dataset& d, const pipeline::Derivation& derivation,
     if (shifted.empty()) break;
     for (const Eigen::Index j : shifted) effect.columns.col(j) = made->secant_at(j, theta[j]);
   }
-  effect.secant_at = [made](int joint, double theta, const std::vector<StandardChange>& changes) -> Eigen::VectorXd {
+  effect.secant_at = [made](int joint, double theta, const BesideEffects& beside) -> Eigen::VectorXd {
     const auto j = static_cast<Eigen::Index>(joint);
     // Beside a load the secant also where the tangent would serve: the tangent is the model's alone.
     const bool moves_a_load =
-        !changes.empty() && theta != 0 && made->reach[j] > 0 && std::abs(theta) * made->reach[j] < kLargestShift;
-    if (moves_a_load || made->needs_secant(j, theta)) return made->secant_at(j, theta, changes);
+        !beside.loads.empty() && theta != 0 && made->reach[j] > 0 && std::abs(theta) * made->reach[j] < kLargestShift;
+    if (moves_a_load || made->needs_secant(j, theta)) return made->secant_at(j, theta, beside.loads);
     return made->tangents.col(j);
   };
 }
@@ -281,8 +281,13 @@ void fit_delay_column(const Dataset& d, Effect& effect) {
     if (!delay_needs_secant(d, delay)) break;
     effect.columns = delay_secant(d, delay);
   }
-  effect.secant_at = [&d, tangent](int, double delay, const std::vector<StandardChange>&) -> Eigen::VectorXd {
-    return delay_needs_secant(d, delay) ? Eigen::VectorXd(delay_secant(d, delay).col(0)) : tangent;
+  // Made again beside the other effects, the column is the lag of all that the positions drive:
+  // theirs too, advanced by the delay along the analysis rows (settle.cpp, relinearise_secants).
+  effect.secant_at = [&d, tangent](int, double delay, const BesideEffects& beside) -> Eigen::VectorXd {
+    Eigen::VectorXd column = delay_needs_secant(d, delay) ? Eigen::VectorXd(delay_secant(d, delay).col(0)) : tangent;
+    const Eigen::VectorXd& theirs = beside.from_positions;
+    if (theirs.size() > 0 && delay != 0) column += (advanced_in_time(d, theirs, delay) - theirs) / delay;
+    return column;
   };
 }
 
