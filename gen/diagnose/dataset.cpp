@@ -186,10 +186,8 @@ Eigen::VectorXd velocity_error(const Dataset& d) {
 
 Eigen::VectorXd friction_sign_velocity(const Dataset& d) { return velocity_error(d).cwiseMax(kSignVelocity); }
 
-Eigen::VectorXd zero_velocity_band(const Dataset& d) { return (2.0 * velocity_error(d)).cwiseMax(kTurnOverBand); }
-
 Eigen::VectorXd away_from_zero_velocity(const Dataset& d, double leak) {
-  const Eigen::VectorXd band = zero_velocity_band(d);
+  const Eigen::VectorXd band = (2.0 * velocity_error(d)).cwiseMax(kTurnOverBand);
   Eigen::MatrixXd near_zero = Eigen::MatrixXd::Zero(d.samples() * d.n, 1);
   for (Eigen::Index s = 0; s < d.samples(); ++s) {
     for (Eigen::Index j = 0; j < d.n; ++j) near_zero(s * d.n + j, 0) = std::abs(d.qd(s, j)) < band[j] ? 1.0 : 0.0;

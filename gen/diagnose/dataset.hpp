@@ -116,12 +116,8 @@ Eigen::VectorXd velocity_error(const Dataset& d);
 /// held-out interval below zero).
 Eigen::VectorXd friction_sign_velocity(const Dataset& d);
 
-/// Per joint, the band near zero velocity, |qd| < max(kTurnOverBand, twice the velocity error),
-/// within which the velocity estimate does not tell a joint that moves slowly from one that holds.
-Eigen::VectorXd zero_velocity_band(const Dataset& d);
-
 /// Per stacked analysis row (A*n): 1 where joint i's velocity is away from zero, 0 where the band
-/// |qd| < zero_velocity_band leaks into the row through the filter (its
+/// |qd| < max(kTurnOverBand, twice the velocity error) leaks into the row through the filter (its
 /// filtered indicator above `leak`, kBandLeak unless told). Near zero a joint's friction is not a
 /// function of the velocity estimate (stiction in a hold, a turn-over of its own shape at a
 /// reversal), so what explains residual only there is no evidence of a friction effect.
