@@ -35,7 +35,7 @@ PlantSettings plant_settings(const ExciteSettings& s, const ExciteReference& ref
   p.effects = s.effects.joints;
   const ContactEffect& c = s.effects.contact;
   p.table.present = c.present;
-  p.table.height = c.height ? *c.height : (c.depth ? reference.lowest_hook + *c.depth : reference.table_height);
+  p.table.height = c.height ? *c.height : (c.depth ? reference.low_hook + *c.depth : reference.table_height);
   p.table.friction = c.friction;
   p.table.stiffness = c.stiffness.value_or(p.table.stiffness);
   p.table.damping = c.damping.value_or(p.table.damping);
@@ -100,7 +100,7 @@ ExciteRun excite(const ExciteSettings& settings, const std::function<void(double
   ExciteRun run;
   run.settings = settings;
   run.table_height = ps.table.height;
-  run.lowest_hook = reference.lowest_hook;
+  run.low_hook = reference.low_hook;
   const auto rows = static_cast<long>(std::lround(settings.duration * settings.rate));
   run.samples.reserve(static_cast<std::size_t>(rows));
   for (long i = 0; i < rows; ++i) {
@@ -177,9 +177,9 @@ std::string excite_summary(const ExciteRun& run) {
     out += fmt::format("q{}      {:>18.5f}   {:>16.4f}\n", k + 1, rms(error[k]), rms(torque[k]));
   if (s.effects.contact.present) {
     out += fmt::format(
-        "table at z = {:.4f} m, {:.1f} mm above the reference's lowest hook point: the hook touches it in {:.1f} % of "
+        "table at z = {:.4f} m, {:.1f} mm above the reference's low hook point: the hook touches it in {:.1f} % of "
         "the rows (largest mean force over a period {:.2f} N)\n",
-        run.table_height, 1e3 * (run.table_height - run.lowest_hook),
+        run.table_height, 1e3 * (run.table_height - run.low_hook),
         100.0 * static_cast<double>(contact) / static_cast<double>(run.samples.size()), force);
   }
   if (s.effects.payload > 0) {

@@ -61,7 +61,7 @@ struct ExciteSample {
 struct ExciteRun {
   ExciteSettings settings;
   double table_height = 0;  // m, the table's when the contact effect is on
-  double lowest_hook = 0;   // m, the reference's lowest hook point
+  double low_hook = 0;      // m, how low the reference's hook goes (ExciteReference::low_hook)
   std::vector<ExciteSample> samples;
 };
 

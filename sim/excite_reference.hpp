@@ -17,11 +17,16 @@ struct ExciteReference {
   std::function<TrajectoryPoint(double)> at;
   double attach = 0.0;        // s, the payload goes on the hook (the Fourier run: from the start)
   double release = -1.0;      // s, and comes off (-1: never)
-  double lowest_hook = 0.0;   // m, base frame: the hook point's lowest height along the reference
+  double low_hook = 0.0;      // m, base frame: how low the hook goes (the Fourier run's: in kTouchedPeriods of
+                              // its periods; the tele-operation run's: its lowest point); a contact's depth
+                              // puts the table that far above it
   double table_height = 0.0;  // m: where a table is unless the contact effect says otherwise
 };
 
-/// The Fourier run's table: this far above the reference's lowest hook point, so the arm presses
+/// The base periods of the Fourier run in which its hook goes as low as `low_hook` at least.
+inline constexpr int kTouchedPeriods = 3;
+
+/// The Fourier run's table: this far above the reference's low hook point, so the arm presses
 /// on it at its lowest swings only, briefly and lightly (about 10-20 % of the torque RMS with the
 /// paper's table friction; the depth is the contact effect's size).
 inline constexpr double kDefaultTableDepth = 0.01;  // m

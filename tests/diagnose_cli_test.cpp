@@ -611,9 +611,9 @@ TEST(DiagnoseCommand, ANarrowedLeaderExplainingLessThanTheNextGivesWay) {
 // twenty-first session's contact grid reaches the hook, the table is found too, and named first:
 // the injected contact is the larger effect.)
 TEST(DiagnoseCommand, CoulombFrictionClearlyWorseWhereTheJointMovesIsNotAsGoodAsStribeck) {
-  const double excess = 0.056539506133563615, depth = 0.004145151081098792;
+  const double excess = 0.056539506133563615, height = -0.3068371720914372;  // 4.1 mm above the lowest hook point
   const std::string effects =
-      effects_file_of({fmt::format(R"({{"effect": "contact", "parameters": {{"depth": {}}}}})", depth),
+      effects_file_of({fmt::format(R"({{"effect": "contact", "parameters": {{"height": {}}}}})", height),
                        joint_effect("stribeck_friction", 2, "fs", excess)});
   const nlohmann::json d = diagnose_excited("fourier_stribeck_contact", effects,
                                             "--plant dyncc --trajectory fourier --rate 200 --seed 83024");
@@ -636,7 +636,7 @@ TEST(DiagnoseCommand, CoulombFrictionClearlyWorseWhereTheJointMovesIsNotAsGoodAs
 TEST(DiagnoseCommand, TouchesInOneEvenBlockAreHeldOutInTwo) {
   const nlohmann::json d =
       diagnose_excited("fourier_two_touches",
-                       effects_file_of({R"({"effect": "contact", "parameters": {"depth": 0.009480352040725636}})"}),
+                       effects_file_of({R"({"effect": "contact", "parameters": {"height": -0.3100545843500723}})"}),
                        "--plant dyncc --trajectory fourier --rate 500 --seed 181048");
   EXPECT_FALSE(d["heldout_blocks"]["even"].get<bool>());
   EXPECT_EQ(d["verdict"]["effect"], "contact") << d["verdict"].dump();
@@ -783,13 +783,11 @@ TEST(DiagnoseCommand, AFrictionAsGoodAsAGainTakesTheJointWhereItLeavesLessWhereI
   EXPECT_NEAR(fitted["gain6"], gain, 0.1 * (gain - 1.0));
 }
 
-// A table `depth` m above the lowest point of the hook in a run of dyncc excite, diagnosed; the
-// verdict must be the contact.
-nlohmann::json diagnosed_contact(const std::string& name, double depth, const std::string& run) {
-  const nlohmann::json d =
-      diagnose_excited(name,
-                       fmt::format(R"({{"effects": [{{"effect": "contact", "parameters": {{"depth": {}}}}}]}})", depth),
-                       run);
+// A table at `height` m (base frame) in a run of dyncc excite, diagnosed; the verdict must be the
+// contact.
+nlohmann::json diagnosed_contact(const std::string& name, double height, const std::string& run) {
+  const nlohmann::json d = diagnose_excited(
+      name, fmt::format(R"({{"effects": [{{"effect": "contact", "parameters": {{"height": {}}}}}]}})", height), run);
   EXPECT_EQ(d["verdict"]["effect"], "contact") << d["verdict"].dump();
   return d;
 }
@@ -800,7 +798,7 @@ nlohmann::json diagnosed_contact(const std::string& name, double depth, const st
 // the grid's points, whose lowest rows are not the touches, the contact explained 2.5 % and the
 // verdict was `unknown`. The local search from the grid's best points reaches the hook.
 TEST(DiagnoseCommand, BriefTouchesOfATableOffTheContactGridAreAContact) {
-  const nlohmann::json d = diagnosed_contact("mujoco_touch", 0.005157602083914288,
+  const nlohmann::json d = diagnosed_contact("mujoco_touch", -0.2645772766861086,
                                              "--plant mujoco --trajectory fourier --rate 1000 --seed 107003");
   ASSERT_FALSE(d["selected"].empty());
   EXPECT_GT(d["selected"][0]["shrink"].get<double>(), 0.3) << d["selected"][0].dump();
@@ -813,7 +811,7 @@ TEST(DiagnoseCommand, BriefTouchesOfATableOffTheContactGridAreAContact) {
 // search, and the verdict was `unknown`. The grid now reaches 2.5 times the scale; the contact is
 // found at the hook and the table's height (z = -0.266 m in the run).
 TEST(DiagnoseCommand, TouchesOfAHookFarAlongTheLastLinkAreAContact) {
-  const nlohmann::json d = diagnosed_contact("rigid_far_hook", 0.010813727620546078,
+  const nlohmann::json d = diagnosed_contact("rigid_far_hook", -0.26595683814038623,
                                              "--plant dyncc --trajectory fourier --rate 200 --seed 107048");
   ASSERT_FALSE(d["selected"].empty());
   EXPECT_GT(d["selected"][0]["shrink_interval"][0].get<double>(), 0.0) << d["selected"][0].dump();
