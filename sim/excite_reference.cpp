@@ -23,7 +23,7 @@ double lowest_hook(const std::function<TrajectoryPoint(double)>& at, double from
 // The height the Fourier run's hook reaches in kTouchedPeriods of its base periods at least: the
 // kTouchedPeriods-th lowest of the periods' lowest points (all of the run's lowest where it is
 // shorter). The joints' frequencies differ by a few per cent, so the hook's path does not repeat:
-// a table just above its single lowest point was touched in one burst of a 60 s log (10 of the 16
+// a table just above its single lowest point was touched in one burst of a 60 s log (10 of the 14
 // wrong verdicts on the bench's Fourier contacts, blind seeds up to 647), which no test on held-out
 // data can tell from an outlier.
 double low_fourier_hook(const std::function<TrajectoryPoint(double)>& at, double duration) {
