@@ -21,6 +21,7 @@
 #include "diagnose/crossval.hpp"
 #include "diagnose/dataset.hpp"
 #include "diagnose/diagnosis.hpp"
+#include "diagnose/diagnosis_output.hpp"
 #include "diagnose/effects.hpp"
 #include "diagnose/report_figures.hpp"
 #include "diagnose/residuals.hpp"
@@ -324,6 +325,36 @@ TEST(DiagnoseReport, DisturbanceStandsOutInTheSpectrumAndItsWindowIsShaded) {
   const plot::Series* joint1 = find_series(over_time.panels[0], "nominal");
   ASSERT_NE(joint1, nullptr);
   EXPECT_NEAR(rms(joint1->y), d.diagnosis.gap.residual_rms[0], 1e-9);
+}
+
+// An `unknown` verdict says why: the first step's best candidate and its interval, and, where
+// the residual's flagged windows make one or two bursts of ten times the usual residual or more,
+// that such an event cannot be tested on blocks held out in time (blind seed 647 case 12: one
+// touch of a table at 0.5-2.5 s, 28.8 times the usual residual). Adjacent windows are one burst;
+// bursts in many places, or small ones, are not events; a named effect needs no reason.
+TEST(DiagnoseReport, AnUnknownVerdictSaysWhyAndPointsAtARareBurst) {
+  diagnose::Diagnosis d;
+  d.verdict.effect = "unknown";
+  diagnose::RankedEffect best;
+  best.effect = "contact";
+  best.shrink = 0.001;
+  best.shrink_low = -0.504;
+  best.shrink_high = 0.506;
+  d.ranking.push_back(best);
+  d.gap.windows = {{0, 2.5, 4.4, 12.0}, {0, 0.5, 2.4, 28.8}};  // one burst over two windows
+  const std::string one = diagnose::why_unknown(d);
+  EXPECT_NE(one.find("contact, removes 0.1 % (95 % interval [-50.4, 50.6] %)"), std::string::npos) << one;
+  EXPECT_NE(one.find("burst (0.5-4.4 s of log 1, 29x the usual residual) is an event"), std::string::npos) << one;
+
+  d.gap.windows.push_back({0, 30.0, 31.9, 15.0});
+  EXPECT_NE(diagnose::why_unknown(d).find("two bursts"), std::string::npos) << diagnose::why_unknown(d);
+  d.gap.windows.push_back({0, 50.0, 51.9, 15.0});  // three places: a recurring effect, not an event
+  EXPECT_EQ(diagnose::why_unknown(d).find("burst"), std::string::npos) << diagnose::why_unknown(d);
+  d.gap.windows = {{0, 0.5, 2.4, 3.0}};  // three times the usual residual: structure, not an event
+  EXPECT_EQ(diagnose::why_unknown(d).find("burst"), std::string::npos) << diagnose::why_unknown(d);
+
+  d.verdict.effect = "contact";
+  EXPECT_TRUE(diagnose::why_unknown(d).empty());
 }
 
 TEST(DiagnoseReport, CommandWritesAPageWhoseFiguresAreBesideIt) {

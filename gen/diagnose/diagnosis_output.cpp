@@ -3,7 +3,9 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
+#include <algorithm>
 #include <cmath>
+#include <ranges>
 #include <utility>
 #include <vector>
 
@@ -113,8 +115,11 @@ nlohmann::json diagnosis_json(const Dataset& data, const Diagnosis& d) {
   for (const RankedEffect& r : d.ranking) ranking.push_back(effect_json(r));
   nlohmann::json selected = nlohmann::json::array();
   for (const RankedEffect& r : d.selected) selected.push_back(effect_json(r));
-  return {{"verdict",
-           {{"effect", d.verdict.effect}, {"joints", d.verdict.joints}, {"confidence", d.verdict.confidence}}},
+  nlohmann::json verdict = {{"effect", d.verdict.effect},
+                            {"joints", d.verdict.joints},
+                            {"confidence", d.verdict.confidence}};
+  if (const std::string why = why_unknown(d); !why.empty()) verdict["why"] = why;
+  return {{"verdict", verdict},
           {"ranking", ranking},
           {"selected", selected},
           {"inertial_parameters", effect_json(d.within_model)},
@@ -132,6 +137,60 @@ nlohmann::json diagnosis_json(const Dataset& data, const Diagnosis& d) {
           {"filter", {{"cutoff_hz", data.cutoff}, {"row_spacing_s", data.step}, {"rows", data.rows()}}},
           {"heldout_blocks", {{"even", d.folds == Folds::even(data.rows())}, {"blocks", blocks}}},
           {"torque", data.held_torque ? "held command" : "at its time stamp"}};
+}
+
+namespace {
+
+// The flagged windows of the residual joined where they touch (within half a second, one log):
+// the bursts of residual, each with its largest ratio to the usual residual.
+std::vector<Window> bursts_of(std::vector<Window> windows) {
+  constexpr double kJoined = 0.5;  // s
+  std::sort(windows.begin(), windows.end(),
+            [](const Window& a, const Window& b) { return std::pair(a.log, a.start) < std::pair(b.log, b.start); });
+  std::vector<Window> bursts;
+  for (const Window& w : windows) {
+    if (!bursts.empty() && bursts.back().log == w.log && w.start - bursts.back().end < kJoined) {
+      bursts.back().end = std::max(bursts.back().end, w.end);
+      bursts.back().rms_ratio = std::max(bursts.back().rms_ratio, w.rms_ratio);
+    } else {
+      bursts.push_back(w);
+    }
+  }
+  return bursts;
+}
+
+}  // namespace
+
+std::string why_unknown(const Diagnosis& d) {
+  if (d.verdict.effect != "unknown") return {};
+  std::string out = "a gap above its floors that no effect of the library removes held out";
+  if (!d.ranking.empty()) {
+    const RankedEffect& best = d.ranking.front();
+    out += fmt::format("; the best candidate, {}, removes {:.1f} % (95 % interval [{:.1f}, {:.1f}] %{})", best.effect,
+                       100 * best.shrink, 100 * best.shrink_low, 100 * best.shrink_high,
+                       best.plausible ? "" : ", an implausible fit");
+  }
+  // A burst is an event: ten times the usual residual or more, in one or two places only.
+  constexpr double kEventRatio = 10.0;
+  const std::vector<Window> bursts = bursts_of(d.gap.windows);
+  const bool events =
+      !bursts.empty() && bursts.size() <= 2 &&
+      std::all_of(bursts.begin(), bursts.end(), [](const Window& w) { return w.rms_ratio >= kEventRatio; });
+  if (events) {
+    const bool one = bursts.size() == 1;
+    out += fmt::format(
+        "; the residual's {} ({}) {} too rare to test on blocks held out in time: a fit on the blocks "
+        "without {} has nothing to learn {} from; look at the log there (a touch, a knock, a glitch of "
+        "a sensor)",
+        one ? "burst" : "two bursts",
+        fmt::join(bursts | std::views::transform([](const Window& w) {
+                    return fmt::format("{:.1f}-{:.1f} s of log {}, {:.0f}x the usual residual", w.start, w.end,
+                                       w.log + 1, w.rms_ratio);
+                  }),
+                  "; "),
+        one ? "is an event" : "are events", one ? "it" : "them", one ? "it" : "them");
+  }
+  return out;
 }
 
 std::string diagnosis_text(const Dataset& data, const Diagnosis& d) {
@@ -196,6 +255,7 @@ std::string diagnosis_text(const Dataset& data, const Diagnosis& d) {
   }
   out += fmt::format("\nverdict: {} (joints {}, confidence {:.2f})\n", d.verdict.effect, joints_text(d.verdict.joints),
                      d.verdict.confidence);
+  if (const std::string why = why_unknown(d); !why.empty()) out += fmt::format("  why: {}\n", why);
   return out;
 }
 

@@ -46,7 +46,10 @@ std::string verdict_html(const nlohmann::json& v) {
   const std::string effect = v["effect"].get<std::string>();
   std::string why;
   if (effect == "none") why = " (the gap is immaterial or at the noise floor)";
-  if (effect == "unknown") why = " (a material gap above the noise floor that no effect of the library explains)";
+  if (effect == "unknown") {
+    why = v.contains("why") ? fmt::format(" ({})", html_escape(v["why"].get<std::string>()))
+                            : " (a material gap above the noise floor that no effect of the library explains)";
+  }
   return fmt::format("<p class=\"verdict\">Verdict: <b>{}</b> on joints {}, confidence {:.2f}{}</p>\n",
                      html_escape(effect), joints(v["joints"]), v["confidence"].get<double>(), why);
 }
