@@ -5,7 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
-#include <ranges>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -178,17 +178,17 @@ std::string why_unknown(const Diagnosis& d) {
       std::all_of(bursts.begin(), bursts.end(), [](const Window& w) { return w.rms_ratio >= kEventRatio; });
   if (events) {
     const bool one = bursts.size() == 1;
+    std::vector<std::string> where;
+    for (const Window& w : bursts) {
+      where.push_back(
+          fmt::format("{:.1f}-{:.1f} s of log {}, {:.0f}x the usual residual", w.start, w.end, w.log + 1, w.rms_ratio));
+    }
     out += fmt::format(
         "; the residual's {} ({}) {} too rare to test on blocks held out in time: a fit on the blocks "
         "without {} has nothing to learn {} from; look at the log there (a touch, a knock, a glitch of "
         "a sensor)",
-        one ? "burst" : "two bursts",
-        fmt::join(bursts | std::views::transform([](const Window& w) {
-                    return fmt::format("{:.1f}-{:.1f} s of log {}, {:.0f}x the usual residual", w.start, w.end,
-                                       w.log + 1, w.rms_ratio);
-                  }),
-                  "; "),
-        one ? "is an event" : "are events", one ? "it" : "them", one ? "it" : "them");
+        one ? "burst" : "two bursts", fmt::join(where, "; "), one ? "is an event" : "are events", one ? "it" : "them",
+        one ? "it" : "them");
   }
   return out;
 }
