@@ -179,6 +179,7 @@ std::string why_unknown(const Diagnosis& d) {
   if (events) {
     const bool one = bursts.size() == 1;
     std::vector<std::string> where;
+    where.reserve(bursts.size());
     for (const Window& w : bursts) {
       where.push_back(
           fmt::format("{:.1f}-{:.1f} s of log {}, {:.0f}x the usual residual", w.start, w.end, w.log + 1, w.rms_ratio));
