@@ -332,15 +332,34 @@ bool clearly_above(const Candidate& c, const Candidate& mine) {
   return c.shrink > mine.shrink + 0.5 * (mine.high - mine.low) + 0.01;
 }
 
+namespace {
+
+// Whether a candidate removes kAcceptShrink of the held-out error. A friction may instead remove
+// it where its joints move (significantly over the folds in which they do) without adding to the
+// error over all rows: the rows near zero velocity hold how the plant's friction turns over, which
+// no friction of the library explains, and beside a friction accepted before it they are most of
+// what is left. Blind seed 811 case 39: a viscous friction of the Kraft's joint 1 (MuJoCo plant,
+// Fourier excitation) beside a Stribeck friction of that joint removes 30 % [29, 40] % where the
+// joint moves and 2.4 % over all rows; left out, the excess took up its torque and read fs1
+// 0.673 for 0.362 (now 0.361, and fv1 0.0945 for 0.0941).
+bool removes_enough(const Candidate& c) {
+  if (c.shrink >= kAcceptShrink) return true;
+  const bool moving_interval = c.away_low <= c.away_high;
+  return is_friction(*c.effect) && c.shrink > 0.0 && moving_interval && c.away_low > 0.0 &&
+         c.away_shrink >= kAcceptShrink;
+}
+
+}  // namespace
+
 // Whether a candidate may be accepted: plausible, significant (for a friction, possibly only where
-// its joints move), material, and removing kAcceptShrink of the held-out error. A friction effect
-// must also explain residual where the velocity is away from zero: one that only fits the rows
-// near zero (a plant whose friction turns over more gently than the model's, read as a negative
-// Coulomb correction; a sharper one, as a Stribeck excess at the smallest scale) explains how the
-// friction turns over, which the model cannot know.
+// its joints move), material, and removing kAcceptShrink of the held-out error (removes_enough). A
+// friction effect must also explain residual where the velocity is away from zero: one that only
+// fits the rows near zero (a plant whose friction turns over more gently than the model's, read as
+// a negative Coulomb correction; a sharper one, as a Stribeck excess at the smallest scale)
+// explains how the friction turns over, which the model cannot know.
 bool acceptable(const Candidate* c) {
   const bool significant = c->low > 0.0 || c->significant_only_away();
-  return c->plausible && c->shrink >= kAcceptShrink && significant && c->material >= kMaterial &&
+  return c->plausible && removes_enough(*c) && significant && c->material >= kMaterial &&
          (!judged_away_from_zero(*c->effect) || c->away_shrink >= kAcceptShrink);
 }
 
