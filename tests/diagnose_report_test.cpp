@@ -342,19 +342,48 @@ TEST(DiagnoseReport, AnUnknownVerdictSaysWhyAndPointsAtARareBurst) {
   best.shrink_high = 0.506;
   d.ranking.push_back(best);
   d.gap.windows = {{0, 2.5, 4.4, 12.0}, {0, 0.5, 2.4, 28.8}};  // one burst over two windows
-  const std::string one = diagnose::why_unknown(d);
+  const std::string one = diagnose::why_not_named(d);
   EXPECT_NE(one.find("contact, removes 0.1 % (95 % interval [-50.4, 50.6] %)"), std::string::npos) << one;
   EXPECT_NE(one.find("burst (0.5-4.4 s of log 1, 29x the usual residual) is an event"), std::string::npos) << one;
 
   d.gap.windows.push_back({0, 30.0, 31.9, 15.0});
-  EXPECT_NE(diagnose::why_unknown(d).find("two bursts"), std::string::npos) << diagnose::why_unknown(d);
+  EXPECT_NE(diagnose::why_not_named(d).find("two bursts"), std::string::npos) << diagnose::why_not_named(d);
   d.gap.windows.push_back({0, 50.0, 51.9, 15.0});  // three places: a recurring effect, not an event
-  EXPECT_EQ(diagnose::why_unknown(d).find("burst"), std::string::npos) << diagnose::why_unknown(d);
+  EXPECT_EQ(diagnose::why_not_named(d).find("burst"), std::string::npos) << diagnose::why_not_named(d);
   d.gap.windows = {{0, 0.5, 2.4, 3.0}};  // three times the usual residual: structure, not an event
-  EXPECT_EQ(diagnose::why_unknown(d).find("burst"), std::string::npos) << diagnose::why_unknown(d);
+  EXPECT_EQ(diagnose::why_not_named(d).find("burst"), std::string::npos) << diagnose::why_not_named(d);
 
   d.verdict.effect = "contact";
-  EXPECT_TRUE(diagnose::why_unknown(d).empty());
+  EXPECT_TRUE(diagnose::why_not_named(d).empty());
+}
+
+// Blind seed 853 case 9: a 10.4 g load beside an offset, each 5 % or less, below the friction
+// sign's floor on every joint, so `none`; yet a load's columns removed 46.3 % held out, [9.8,
+// 82.7] %, with an implausible fit. A `none` verdict says the gap is within its floors, and names
+// a candidate that still removes part of it significantly, and why it was not named.
+TEST(DiagnoseReport, ANoneVerdictSaysTheGapIsWithinItsFloorsAndNamesWhatStillExplainsPartOfIt) {
+  diagnose::Diagnosis d;
+  d.verdict.effect = "none";
+  EXPECT_NE(diagnose::why_not_named(d).find("gap is within its floors"), std::string::npos)
+      << diagnose::why_not_named(d);
+  diagnose::RankedEffect best;
+  best.effect = "payload";
+  best.shrink = 0.463;
+  best.shrink_low = 0.098;
+  best.shrink_high = 0.827;
+  best.plausible = false;
+  d.ranking.push_back(best);
+  const std::string why = diagnose::why_not_named(d);
+  EXPECT_NE(why.find("yet payload removes 46.3 % of it held out (95 % interval [9.8, 82.7] %), not named because its "
+                     "fit is implausible"),
+            std::string::npos)
+      << why;
+  d.ranking.front().shrink = 0.04;  // less than an effect must remove: what such a gap is made of
+  d.ranking.front().shrink_low = 0.01;
+  EXPECT_EQ(diagnose::why_not_named(d).find("payload"), std::string::npos) << diagnose::why_not_named(d);
+  d.ranking.front().shrink = 0.463;
+  d.ranking.front().shrink_low = -0.02;  // not significant
+  EXPECT_EQ(diagnose::why_not_named(d).find("payload"), std::string::npos) << diagnose::why_not_named(d);
 }
 
 TEST(DiagnoseReport, CommandWritesAPageWhoseFiguresAreBesideIt) {

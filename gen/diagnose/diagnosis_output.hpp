@@ -13,11 +13,14 @@ namespace dyncc::diagnose {
 nlohmann::json diagnosis_json(const Dataset& data, const Diagnosis& diagnosis);
 std::string diagnosis_text(const Dataset& data, const Diagnosis& diagnosis);
 
-/// Why nothing was named where the verdict is `unknown` (empty otherwise): the first step's best
-/// candidate with what it removes held out and its 95 % interval, and, where the residual's
-/// flagged windows make one or two bursts, that so rare an event is not something blocks held
-/// out in time can test (a fit on the blocks without it has nothing to learn it from), so the
-/// log should be looked at there.
-std::string why_unknown(const Diagnosis& diagnosis);
+/// Why nothing was named where the verdict is `unknown` or `none` (empty otherwise).
+/// `unknown`: the first step's best candidate with what it removes held out and its 95 %
+/// interval, and, where the residual's flagged windows make one or two bursts, that so rare an
+/// event is not something blocks held out in time can test (a fit on the blocks without it has
+/// nothing to learn it from), so the log should be looked at there.
+/// `none`: that every joint's gap is within its floors, and where the first step's best
+/// candidate still removes part of it significantly held out, which one, how much, and why it
+/// was not accepted (a small effect may hide below the floors: the user decides whether to look).
+std::string why_not_named(const Diagnosis& diagnosis);
 
 }  // namespace dyncc::diagnose

@@ -45,10 +45,12 @@ std::string shrink(const nlohmann::json& effect) {
 std::string verdict_html(const nlohmann::json& v) {
   const std::string effect = v["effect"].get<std::string>();
   std::string why;
-  if (effect == "none") why = " (the gap is immaterial or at the noise floor)";
-  if (effect == "unknown") {
-    why = v.contains("why") ? fmt::format(" ({})", html_escape(v["why"].get<std::string>()))
-                            : " (a material gap above the noise floor that no effect of the library explains)";
+  if (v.contains("why")) {
+    why = fmt::format(" ({})", html_escape(v["why"].get<std::string>()));
+  } else if (effect == "none") {
+    why = " (the gap is immaterial or at the noise floor)";
+  } else if (effect == "unknown") {
+    why = " (a material gap above the noise floor that no effect of the library explains)";
   }
   return fmt::format("<p class=\"verdict\">Verdict: <b>{}</b> on joints {}, confidence {:.2f}{}</p>\n",
                      html_escape(effect), joints(v["joints"]), v["confidence"].get<double>(), why);
