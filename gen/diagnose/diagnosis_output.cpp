@@ -165,14 +165,15 @@ std::vector<Window> bursts_of(std::vector<Window> windows) {
 
 namespace {
 
-// Why a `none` verdict names nothing: the gap is within its floors; and the first step's best
-// candidate where it removes part of that gap significantly held out all the same (blind seed 853
-// case 9: a 10.4 g load beside an offset, each 5 % or less, below the friction sign's floor on
-// every joint, while a load's columns removed 46 % [10, 83] %, its fit implausible).
+// Why a `none` verdict names nothing: no joint's gap is above its floors and material (set_verdict); and the first
+// step's best candidate where it removes part of that gap significantly held out all the same (blind seed 853 case 9:
+// a 10.4 g load beside an offset, each 5 % or less, below the friction sign's floor on every joint, while a load's
+// columns removed 46 % [10, 83] %, its fit implausible).
 std::string why_none(const Diagnosis& d) {
-  std::string out =
-      "every joint's held-out gap is within its floors (the torque's noise, what the positions' noise moves "
-      "the model by, the model's friction sign at reversals)";
+  std::string out = fmt::format(
+      "no joint's held-out gap is both above its floors (the torque's noise, what the positions' noise moves "
+      "the model by, the model's friction sign at reversals) and material ({:.1f} % of its torque RMS)",
+      100 * kMaterial);
   if (d.ranking.empty()) return out;
   // Only a candidate that would have been an effect by what it removes (kAcceptShrink, its
   // interval above zero, and for a friction where the joints move too) but was not by what it

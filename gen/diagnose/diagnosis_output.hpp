@@ -18,7 +18,7 @@ std::string diagnosis_text(const Dataset& data, const Diagnosis& diagnosis);
 /// interval, and, where the residual's flagged windows make one or two bursts, that so rare an
 /// event is not something blocks held out in time can test (a fit on the blocks without it has
 /// nothing to learn it from), so the log should be looked at there.
-/// `none`: that every joint's gap is within its floors, and where the first step's best
+/// `none`: that no joint's gap is both above its floors and material, and where the first step's best
 /// candidate still removes part of it significantly held out, which one, how much, and why it
 /// was not accepted (a small effect may hide below the floors: the user decides whether to look).
 std::string why_not_named(const Diagnosis& diagnosis);
