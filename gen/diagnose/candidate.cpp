@@ -344,9 +344,7 @@ namespace {
 // 0.673 for 0.362 (now 0.361, and fv1 0.0945 for 0.0941).
 bool removes_enough(const Candidate& c) {
   if (c.shrink >= kAcceptShrink) return true;
-  const bool moving_interval = c.away_low <= c.away_high;
-  return is_friction(*c.effect) && c.shrink > 0.0 && moving_interval && c.away_low > 0.0 &&
-         c.away_shrink >= kAcceptShrink;
+  return is_friction(*c.effect) && c.shrink > 0.0 && c.significant_away() && c.away_shrink >= kAcceptShrink;
 }
 
 }  // namespace

@@ -161,10 +161,6 @@ std::vector<Window> bursts_of(std::vector<Window> windows) {
   return bursts;
 }
 
-}  // namespace
-
-namespace {
-
 // Why a `none` verdict names nothing: no joint's gap is above its floors and material (set_verdict); and the first
 // step's best candidate where it removes part of that gap significantly held out all the same (blind seed 853 case 9:
 // a 10.4 g load beside an offset, each 5 % or less, below the friction sign's floor on every joint, while a load's

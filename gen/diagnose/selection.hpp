@@ -64,8 +64,10 @@ struct Candidate {
   std::vector<int> away_joints;
   std::vector<Eigen::Index> away_folds;
   Eigen::MatrixXd away_before, away_after;  // folds x joints
+  // Significant where its joints move: an interval there (three moving folds or more) above zero.
+  [[nodiscard]] bool significant_away() const { return away_low > 0.0 && away_low <= away_high; }
   // Significant only where its joints move (its interval over all rows includes zero).
-  [[nodiscard]] bool significant_only_away() const { return low <= 0.0 && away_low > 0.0 && away_low <= away_high; }
+  [[nodiscard]] bool significant_only_away() const { return low <= 0.0 && significant_away(); }
 };
 
 // Pairs of candidates that the rows where their joints move tell apart (closer_where_moving): the
