@@ -92,6 +92,12 @@ inline const pipeline::Derivation& puma_derivation() {
   return *d;
 }
 
+/// The Franka Panda's description (robots/panda.yaml), derived once per test program.
+inline const pipeline::Derivation& panda_derivation() {
+  static const std::unique_ptr<pipeline::Derivation> d = derive_file(robots_dir() / "panda.yaml");
+  return *d;
+}
+
 /// A random state from the tests' own generator (not dyncc's random_state): angles in
 /// [-pi, pi], rates, reference velocities and accelerations in [-2, 2].
 inline dyn::State random_state(Eigen::Index n, std::mt19937_64& rng) {

@@ -31,6 +31,12 @@ bool per_joint(const Effect& e) {
   return !e.joint_of.empty() && std::all_of(e.joint_of.begin(), e.joint_of.end(), [](int j) { return j >= 0; });
 }
 
+// Whether an effect shows as the measured positions being off the link's (an offset, a spring, a
+// dead band): its column of joint j has rows on every joint whose torque that position moves.
+bool shifts_positions(const Effect& e) {
+  return e.family == "position_offset" || e.family == "joint_elasticity" || e.family == "backlash";
+}
+
 // For an effect with one column set per joint (friction, gain, offset, ...), the joints whose
 // own columns carry a material, significant part of the fit: where the effect IS, rather than
 // where its fit happens to lower the residual (an offset of joint 2 changes joint 3's torque too).

@@ -133,6 +133,7 @@ bool acceptable(const Candidate* c);
 // reading.cpp
 double physical(Reading reading, double theta);
 bool per_joint(const Effect& e);
+bool shifts_positions(const Effect& e);
 std::vector<int> own_joints(const Candidate& c, Eigen::Index offset, const Eigen::VectorXd& torque_rms);
 RankedEffect describe(const Candidate& c, const Eigen::VectorXd& before, Eigen::Index offset,
                       const Eigen::VectorXd& torque_rms);

@@ -148,7 +148,12 @@ std::map<int, double> fitted_gains(const CrossValidation& cv, const std::vector<
 // A torque gain g of joint j: the arm applies g times the logged torque, so every other column of
 // joint j is fitted in logged torque and its coefficient is the applied one over g (a viscous
 // friction of 0.190 beside a gain of 1.11 on the same joint read 0.170; seed 79 case 39). Per
-// column of the joint fit: g for a per-joint column of a joint with a fitted gain, else 1.
+// column of the joint fit: g for a per-joint torque column of a joint with a fitted gain, else 1.
+// A shift of the positions is no torque: its rows are put in logged torque instead
+// (arm_rows_in_logged_torque), and its coefficient is the shift per unit of its pattern. A
+// spring's pattern is the logged torque of its joint, 1/g of what the spring carries, so its
+// compliance is the coefficient over g (blind seed 907 case 29: a Panda spring of joint 4 of
+// 189.7 N m/rad beside a gain of 1.055 of that joint read 170.7, the gain applied twice over).
 Eigen::VectorXd applied_torque_scale(const CrossValidation& cv, const std::vector<Effect>& effects) {
   const std::map<int, double> gain_of = fitted_gains(cv, effects);
   Eigen::VectorXd scale = Eigen::VectorXd::Ones(cv.theta.size());
@@ -156,7 +161,9 @@ Eigen::VectorXd applied_torque_scale(const CrossValidation& cv, const std::vecto
   for (const Effect& e : effects) {
     for (Eigen::Index k = 0; k < e.columns.cols() && e.family != "torque_gain"; ++k) {
       const auto gain = gain_of.find(e.joint_of[static_cast<std::size_t>(k)]);
-      if (gain != gain_of.end()) scale[at + k] = gain->second;
+      if (gain == gain_of.end()) continue;
+      if (!shifts_positions(e)) scale[at + k] = gain->second;
+      if (e.family == "joint_elasticity") scale[at + k] = 1.0 / gain->second;
     }
     at += e.columns.cols();
   }
@@ -164,16 +171,17 @@ Eigen::VectorXd applied_torque_scale(const CrossValidation& cv, const std::vecto
 }
 
 // The same for an effect of the whole arm (a payload, a contact, a delay, the inertial
-// parameters): its columns have rows on several joints, so no factor on a coefficient says it;
-// instead its rows of a joint with a gain g are divided by g (the logged torque is what the arm
-// applies over g) and the joint fit repeated, twice, the gains moving a little as it does (seed
-// 137 case 9: a 29 g Kraft payload beside a gain of 1.0275 on joint 2, 81 Hz, read 3.0 % light:
-// the payload's torque on joint 2 was fitted as applied and logged at once).
+// parameters) or a shift of the positions: its columns have rows on several joints, so no factor
+// on a coefficient says it; instead its rows of a joint with a gain g are divided by g (the logged
+// torque is what the arm applies over g) and the joint fit repeated, twice, the gains moving a
+// little as it does (seed 137 case 9: a 29 g Kraft payload beside a gain of 1.0275 on joint 2,
+// 81 Hz, read 3.0 % light: the payload's torque on joint 2 was fitted as applied and logged at
+// once).
 template <class Fit>
 void arm_rows_in_logged_torque(std::vector<Effect>& effects, CrossValidation& cv, const Fit& fit, Eigen::Index n) {
   std::vector<std::size_t> arm;
   for (std::size_t k = 0; k < effects.size(); ++k) {
-    if (!per_joint(effects[k])) arm.push_back(k);
+    if (!per_joint(effects[k]) || shifts_positions(effects[k])) arm.push_back(k);
   }
   if (arm.empty() || fitted_gains(cv, effects).empty()) return;
   std::vector<Eigen::MatrixXd> as_applied;
