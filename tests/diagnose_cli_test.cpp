@@ -638,6 +638,22 @@ TEST(DiagnoseCommand, AFrictionBesideAnotherOfItsJointIsJudgedWhereTheJointMoves
   expect_named_on_joint_with_fits(d, "stribeck_friction", 1, {{"fs1", excess}, {"fv1", fv}});
 }
 
+// Blind bench seed 881, case 24: a Stribeck excess of the Kraft's joint 2 (10 % of the torque)
+// beside a viscous friction of joint 1 half as large, the rigid plant's Fourier log at 200 Hz.
+// The excess was accepted at 0.1 rad/s and a viscous friction of joints 1 and 2 after it; chosen
+// again beside it, the excess's scale went to 0.33 rad/s, where the joint fit read fv2 -0.47 N m
+// s/rad (a friction falling as the joint speeds up) and no excess, and the verdict was a Coulomb
+// friction. A scale is chosen again only where every friction reads plausibly.
+TEST(DiagnoseCommand, AStribeckScaleIsNotChosenAgainWhereAFrictionReadsNegative) {
+  const double excess = 0.17273936566698078, fv = 0.040124740973268305;
+  const nlohmann::json d = diagnose_excited("fourier_stribeck_beside_viscous",
+                                            effects_file_of({joint_effect("stribeck_friction", 2, "fs", excess),
+                                                             joint_effect("viscous_friction", 1, "fv", fv)}),
+                                            "--plant dyncc --trajectory fourier --rate 200 --seed 881024");
+  expect_named_on_joint_with_fits(d, "stribeck_friction", 2, {{"fs2", excess}, {"fv1", fv}});
+  EXPECT_FALSE(fitted_of(d).count("fv2")) << d["selected"].dump();
+}
+
 // Blind bench seed 83, case 24: a Stribeck excess of joint 2 (10 % of the torque) beside a table
 // touched by the hook, the rigid plant's Fourier log at 200 Hz. Joint 2 barely moves in two of the
 // five folds, so the Stribeck friction's interval where it moves is wide (its shrink there 92, 85,

@@ -79,12 +79,37 @@ void coulomb_where_no_excess(Diagnosis& out, std::size_t k, const Eigen::VectorX
   r.profile = 0;
 }
 
-// Effects[k]'s profile point chosen again beside the other accepted effects (rechoose_points).
+// Whether every accepted friction reads plausibly in the joint fit `cv` (no friction of a joint
+// whose total, the description's and the fitted, is below zero).
+bool frictions_plausible(const Diagnosis& out, const CrossValidation& cv, const pipeline::Derivation& derivation,
+                         Eigen::Index n) {
+  Candidate joint;
+  joint.cv = cv;
+  joint.after = joint_rms(cv.heldout, n);
+  Eigen::Index at = 0;
+  for (const Effect& e : out.accepted_effects) {
+    joint.effect = &e;
+    if (is_friction(e) &&
+        !plausible(describe(joint, out.gap.residual_rms, at, out.gap.torque_rms), derivation, out.gap))
+      return false;
+    at += e.columns.cols();
+  }
+  return true;
+}
+
+// Effects[k]'s profile point chosen again beside the other accepted effects (rechoose_points),
+// among the points at which the joint fit reads every friction plausibly (where the chosen point
+// does): blind seed 881 case 24, a Stribeck excess of the Kraft's joint 2 (closed loop, rigid
+// plant) chosen at 0.1 rad/s, with a viscous friction of joints 1 and 2 accepted after it, moved
+// to 0.33 rad/s beside a viscous friction of joint 2 of -0.47 N m s/rad (a friction that falls as
+// the joint speeds up: the excess's fading, which the larger scale let it take up), lost its
+// excess in the joint fit and was named a Coulomb friction.
 void rechoose_point(Diagnosis& out, std::size_t k, const std::deque<Effect>& effects, const Eigen::VectorXd& r0,
-                    const Eigen::VectorXd& weight, Eigen::Index n) {
+                    const Eigen::VectorXd& weight, Eigen::Index n, const pipeline::Derivation& derivation) {
   const Effect chosen = out.accepted_effects[k];
-  auto error = [&]() {
-    const CrossValidation cv = fit_together(out.accepted_effects, r0, weight, out.folds, out.away, out.far, n);
+  auto joint_fit = [&]() { return fit_together(out.accepted_effects, r0, weight, out.folds, out.away, out.far, n); };
+  // The joint fit's held-out error on the rows away from zero velocity.
+  auto away_error = [&](const CrossValidation& cv) {
     double sum = 0;
     for (Eigen::Index r = 0; r < r0.size(); ++r) {
       const double w = out.away[r] * weight[r % n] * weight[r % n];
@@ -92,7 +117,9 @@ void rechoose_point(Diagnosis& out, std::size_t k, const std::deque<Effect>& eff
     }
     return sum;
   };
-  double least = error();
+  const CrossValidation at_chosen = joint_fit();
+  const bool plausible_only = frictions_plausible(out, at_chosen, derivation, n);
+  double least = away_error(at_chosen);
   Effect best = chosen;
   for (const Effect& point : effects) {
     if (point.name != chosen.name || point.profile == chosen.profile) continue;
@@ -102,7 +129,9 @@ void rechoose_point(Diagnosis& out, std::size_t k, const std::deque<Effect>& eff
     });
     if (mine.columns.cols() != chosen.columns.cols()) continue;
     out.accepted_effects[k] = std::move(mine);
-    const double e = error();
+    const CrossValidation cv = joint_fit();
+    if (plausible_only && !frictions_plausible(out, cv, derivation, n)) continue;
+    const double e = away_error(cv);
     if (e < least) {
       least = e;
       best = out.accepted_effects[k];
@@ -120,13 +149,14 @@ void rechoose_point(Diagnosis& out, std::size_t k, const std::deque<Effect>& eff
 // surface: chosen again among its grid's points beside a payload, it moved the payload's mass by 5 %
 // (seed 23 case 54).
 void rechoose_points(Diagnosis& out, const std::deque<Effect>& effects, const Eigen::VectorXd& r0,
-                     const Eigen::VectorXd& weight, Eigen::Index n, const std::vector<RegimeSplit>& splits) {
+                     const Eigen::VectorXd& weight, Eigen::Index n, const std::vector<RegimeSplit>& splits,
+                     const pipeline::Derivation& derivation) {
   for (std::size_t k = 0; k < out.accepted_effects.size(); ++k) {
     const Effect chosen = out.accepted_effects[k];
     if (chosen.profile_name.empty() || !is_friction(chosen)) continue;
     // Alone, a friction's point is where the search left it; whether its excess holds is asked
     // all the same (until the twenty-first session only beside another effect).
-    if (out.accepted_effects.size() >= 2) rechoose_point(out, k, effects, r0, weight, n);
+    if (out.accepted_effects.size() >= 2) rechoose_point(out, k, effects, r0, weight, n, derivation);
     coulomb_where_no_excess(out, k, r0, weight, n, splits);
   }
 }
@@ -842,7 +872,7 @@ void settle_selection(Diagnosis& out, const Dataset& d, const std::deque<Effect>
   const Eigen::Index n = d.n;
   const Eigen::VectorXd& r0 = d.residual;
   const std::vector<RegimeSplit> splits = regime_splits(d, out.away);
-  rechoose_points(out, effects, r0, out.weight, n, splits);
+  rechoose_points(out, effects, r0, out.weight, n, splits, derivation);
   one_effect_for_two_steps(out, step_alternatives, r0, out.weight, n, step_parts);
   relinearise_secants(out, r0, out.weight, n);
   refit_together(out, r0, out.weight, n, splits, std::move(step_parts));
