@@ -85,5 +85,20 @@ TEST(Plausibility, AHeldContactPushes) {
   EXPECT_TRUE(diagnose::plausible(pressed, kraft_derivation(), gap()));
 }
 
+// A pressed contact's friction is judged by its coefficient: a frictionless table reads a friction
+// force of a few mN either side of zero beside its push (blind seed 433 case 19).
+TEST(Plausibility, APressedContactsFrictionIsJudgedByItsCoefficient) {
+  diagnose::RankedEffect pressed;
+  pressed.family = "contact";
+  pressed.parameters = {{"force", 0.47, 0.04},
+                        {"moment_x", 0.42, 0.02},
+                        {"friction_force", -0.0022, 0.0007},
+                        {"point_x", 0.9, 0.1},
+                        {"friction_coefficient", -0.009, 0.011}};
+  EXPECT_TRUE(diagnose::plausible(pressed, kraft_derivation(), gap()));
+  pressed.parameters[4] = {"friction_coefficient", -0.3, 0.05};
+  EXPECT_FALSE(diagnose::plausible(pressed, kraft_derivation(), gap())) << "friction that pushes the point along";
+}
+
 }  // namespace
 }  // namespace dyncc::test

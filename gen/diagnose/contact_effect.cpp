@@ -114,6 +114,16 @@ Effect ContactRows::effect(const ContactPoint& at) const {
     return e;
   }
   e.columns = Eigen::MatrixXd::Zero(samples * n, 8);
+  // The spring's columns are taken about the mean depth over the rows in contact, so that `force`
+  // (and `friction_force`) is the push there, the point at rest: what a table that pushes gives
+  // above zero (reading.cpp reads the push at the surface from it).
+  double mean_depth = 0, touching = 0;
+  for (Eigen::Index s = 0; s < samples; ++s) {
+    if (z[s] >= h) continue;
+    mean_depth += h - z[s];
+    touching += 1;
+  }
+  if (touching > 0) mean_depth /= touching;
   for (Eigen::Index s = 0; s < samples; ++s) {
     if (z[s] >= h) continue;
     // The point's sinking rate (down . v) and J_c^T of its sliding direction.
@@ -126,10 +136,10 @@ Effect ContactRows::effect(const ContactPoint& at) const {
     const auto rows = lever_.middleRows(s * n, n);
     const Eigen::VectorXd at_point = rows.col(0) + rows.rightCols(3) * c;
     e.columns.block(s * n, 0, n, 4) = rows;
-    e.columns.block(s * n, 4, n, 1) = at_point * (h - z[s]);
+    e.columns.block(s * n, 4, n, 1) = at_point * (h - z[s] - mean_depth);
     e.columns.block(s * n, 5, n, 1) = at_point * sinking;
     e.columns.block(s * n, 6, n, 1) = sliding;
-    e.columns.block(s * n, 7, n, 1) = sliding * (h - z[s]);
+    e.columns.block(s * n, 7, n, 1) = sliding * (h - z[s] - mean_depth);
   }
   for (const char* name :
        {"force", "moment_x", "moment_y", "moment_z", "stiffness", "damping", "friction_force", "friction_stiffness"}) {
@@ -138,6 +148,7 @@ Effect ContactRows::effect(const ContactPoint& at) const {
     e.reading.push_back(Reading::as_is);
   }
   e.columns = d.condition(e.columns);  // one pass: see Dataset (a contact is the measured exception)
+  e.shape.push_back({"mean_depth", mean_depth, 0.0});
   return e;
 }
 

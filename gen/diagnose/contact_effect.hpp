@@ -1,7 +1,10 @@
 // The contact candidate: a horizontal surface (perpendicular to gravity) pushing up on a point c
 // of the payload link while that point is below the surface height h, with a normal force
-// N = f0 + k (h - z_c) + d (-dz_c/dt) and a friction force mu N against the point's horizontal
-// sliding. The force's torque is J_c^T N (-g^), the gradient of the point's height, i.e. the
+// N = F + k (h - z_c - D) + d (-dz_c/dt) and a friction force mu N against the point's horizontal
+// sliding. D is the mean depth of the rows in contact, so F (`force`) is the push there with the
+// point at rest, and F - k D (`surface_push`) the push at the surface (a damped penalty contact
+// lets go before the point leaves the surface: that push reads below zero where F does not). The
+// force's torque is J_c^T N (-g^), the gradient of the point's height, i.e. the
 // gravity part of the link's mass and first-moment regressor columns over |g|; so the force and
 // its moments F c are linear columns (the fit re-estimates the point), and only the gate
 // (z_c < h), the spring's and the damper's lever and the sliding direction need the point and the

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <optional>
+#include <tuple>
 
 #include "diagnose/fold_plan.hpp"
 #include "diagnose/long_rests.hpp"
@@ -186,10 +187,19 @@ std::map<std::string, Candidate> best_candidates(const ContactRows& contacts, co
                                                  const std::vector<std::string>& fitted, std::deque<Effect>& effects,
                                                  std::deque<Effect>& narrowed_effects) {
   std::map<std::string, Candidate> best;
+  // Of a contact's points, a plausible one whose interval over the folds is above zero is
+  // preferred to one that explains more without (its touches in few folds), and then one whose
+  // push at its surface is not clearly below zero (surface_push) to one placed too high.
+  auto significant_contact = [](const Candidate& c) { return c.effect->family == "contact" && c.low > 0.0; };
+  auto surface_too_high = [&](const Candidate& c) {
+    const auto push = surface_push(c, s.accepted.cols());
+    return push && push->value < -2.0 * push->error;
+  };
+  auto rank = [&](const Candidate& c) { return std::tuple{c.plausible, significant_contact(c), !surface_too_high(c)}; };
   auto consider = [&](Candidate c) {
     auto it = best.find(c.effect->name);
-    const bool better = it == best.end() || (c.plausible && !it->second.plausible) ||
-                        (c.plausible == it->second.plausible && point_key(c) > point_key(it->second));
+    const bool better = it == best.end() || rank(c) > rank(it->second) ||
+                        (rank(c) == rank(it->second) && point_key(c) > point_key(it->second));
     if (better) best[c.effect->name] = std::move(c);
   };
   std::vector<std::pair<const Effect*, ContactFit>> contact_grid;  // the first step's, as judged

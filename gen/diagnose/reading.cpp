@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <optional>
 
 #include "diagnose/plausibility.hpp"
 #include "diagnose/regime_error.hpp"
@@ -132,6 +133,23 @@ void add_held_point(RankedEffect& r, const ContactPoint& at) {
 
 }  // namespace
 
+// A pressed contact's push at its fitted surface (the point at rest there): the push at the
+// mean depth of the rows in contact less the spring's share of it, with its error over the
+// folds; nothing for any other effect. A spring contact pushes from its surface on, so a push
+// there clearly below zero is a surface placed too high; a penalty contact with a damper lets go
+// before the point leaves the surface, which reads the same (ContactRows::effect).
+std::optional<FittedParameter> surface_push(const Candidate& c, Eigen::Index offset) {
+  const Effect& e = *c.effect;
+  if (e.family != "contact" || e.columns.cols() != 8) return std::nullopt;
+  const auto depth =
+      std::find_if(e.shape.begin(), e.shape.end(), [](const ShapeValue& v) { return v.name == "mean_depth"; });
+  if (depth == e.shape.end()) return std::nullopt;
+  const Eigen::VectorXd folds = c.cv.theta_folds.row(offset) - depth->value * c.cv.theta_folds.row(offset + 4);
+  const auto k = static_cast<double>(folds.size());
+  const double error = std::sqrt((folds.array() - folds.mean()).square().sum() * (k - 1) / k);
+  return symmetric_interval({"surface_push", c.cv.theta[offset] - depth->value * c.cv.theta[offset + 4], error});
+}
+
 RankedEffect describe(const Candidate& c, const Eigen::VectorXd& before, Eigen::Index offset,
                       const Eigen::VectorXd& torque_rms) {
   RankedEffect r;
@@ -178,6 +196,7 @@ RankedEffect describe(const Candidate& c, const Eigen::VectorXd& before, Eigen::
     } else {
       add_point(r, "force", "moment_");
       add_friction_coefficient(r);
+      if (const auto push = surface_push(c, offset)) r.parameters.push_back(*push);
     }
     r.parameters.push_back({"surface_height", r.profile, 0.0});
   }

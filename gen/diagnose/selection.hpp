@@ -9,6 +9,7 @@
 #include <functional>
 #include <limits>
 #include <map>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -134,6 +135,7 @@ bool acceptable(const Candidate* c);
 double physical(Reading reading, double theta);
 bool per_joint(const Effect& e);
 bool shifts_positions(const Effect& e);
+std::optional<FittedParameter> surface_push(const Candidate& c, Eigen::Index offset);
 std::vector<int> own_joints(const Candidate& c, Eigen::Index offset, const Eigen::VectorXd& torque_rms);
 RankedEffect describe(const Candidate& c, const Eigen::VectorXd& before, Eigen::Index offset,
                       const Eigen::VectorXd& torque_rms);
