@@ -121,11 +121,14 @@ CrossValidation cross_validate(const Eigen::VectorXd& r, const Eigen::MatrixXd& 
         E.middleRows(begin * joints, (end - begin) * joints) * theta;
   }
   cv.theta = solve(all_normal, all_moment, scale);
-  const Eigen::VectorXd mean = cv.theta_folds.rowwise().mean();
-  cv.theta_error =
-      ((cv.theta_folds.colwise() - mean).array().square().rowwise().sum() * (static_cast<double>(kFolds - 1) / kFolds))
-          .sqrt();
+  cv.theta_error = jackknife_error(cv.theta_folds);
   return cv;
+}
+
+Eigen::VectorXd jackknife_error(const Eigen::MatrixXd& per_fold) {
+  const auto k = static_cast<double>(per_fold.cols());
+  const Eigen::VectorXd mean = per_fold.rowwise().mean();
+  return ((per_fold.colwise() - mean).array().square().rowwise().sum() * ((k - 1) / k)).sqrt();
 }
 
 }  // namespace dyncc::diagnose

@@ -47,6 +47,10 @@ struct NoiseDraws {
   std::vector<Eigen::VectorXd> target;   // per draw
 };
 
+/// The jackknife standard error of each row's estimate from its K fold fits (rows x K, each fit
+/// on K-1 blocks): sqrt((K-1)/K sum (x_f - mean)^2), as CrossValidation::theta_error states it.
+Eigen::VectorXd jackknife_error(const Eigen::MatrixXd& per_fold);
+
 /// Fits r ~ E theta (columns scaled to unit norm, a tiny ridge for collinear columns) with
 /// rows weighted per joint (weight[j] for joint j's rows), K times on K-1 blocks (`folds`, over
 /// the samples r.size() / joints).

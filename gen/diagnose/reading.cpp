@@ -144,10 +144,9 @@ std::optional<FittedParameter> surface_push(const Candidate& c, Eigen::Index off
   const auto depth =
       std::find_if(e.shape.begin(), e.shape.end(), [](const ShapeValue& v) { return v.name == "mean_depth"; });
   if (depth == e.shape.end()) return std::nullopt;
-  const Eigen::VectorXd folds = c.cv.theta_folds.row(offset) - depth->value * c.cv.theta_folds.row(offset + 4);
-  const auto k = static_cast<double>(folds.size());
-  const double error = std::sqrt((folds.array() - folds.mean()).square().sum() * (k - 1) / k);
-  return symmetric_interval({"surface_push", c.cv.theta[offset] - depth->value * c.cv.theta[offset + 4], error});
+  const Eigen::MatrixXd folds = c.cv.theta_folds.row(offset) - depth->value * c.cv.theta_folds.row(offset + 4);
+  return symmetric_interval(
+      {"surface_push", c.cv.theta[offset] - depth->value * c.cv.theta[offset + 4], jackknife_error(folds)[0]});
 }
 
 RankedEffect describe(const Candidate& c, const Eigen::VectorXd& before, Eigen::Index offset,

@@ -110,12 +110,7 @@ void rechoose_point(Diagnosis& out, std::size_t k, const std::deque<Effect>& eff
   auto joint_fit = [&]() { return fit_together(out.accepted_effects, r0, weight, out.folds, out.away, out.far, n); };
   // The joint fit's held-out error on the rows away from zero velocity.
   auto away_error = [&](const CrossValidation& cv) {
-    double sum = 0;
-    for (Eigen::Index r = 0; r < r0.size(); ++r) {
-      const double w = out.away[r] * weight[r % n] * weight[r % n];
-      sum += w * cv.heldout[r] * cv.heldout[r];
-    }
-    return sum;
+    return score(cv.heldout, weight, n, 0, r0.size() / n, &out.away);
   };
   const CrossValidation at_chosen = joint_fit();
   const bool plausible_only = frictions_plausible(out, at_chosen, derivation, n);
@@ -192,8 +187,11 @@ Eigen::VectorXd applied_torque_scale(const CrossValidation& cv, const std::vecto
     for (Eigen::Index k = 0; k < e.columns.cols() && e.family != "torque_gain"; ++k) {
       const auto gain = gain_of.find(e.joint_of[static_cast<std::size_t>(k)]);
       if (gain == gain_of.end()) continue;
-      if (!shifts_positions(e)) scale[at + k] = gain->second;
-      if (e.family == "joint_elasticity") scale[at + k] = 1.0 / gain->second;
+      if (e.family == "joint_elasticity") {
+        scale[at + k] = 1.0 / gain->second;
+      } else if (!shifts_positions(e)) {
+        scale[at + k] = gain->second;
+      }
     }
     at += e.columns.cols();
   }
