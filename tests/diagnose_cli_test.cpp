@@ -924,6 +924,30 @@ TEST(DiagnoseCommand, ASpringBesideAGainOfItsJointIsReadInAppliedTorqueOnce) {
   EXPECT_NEAR(fitted["gain4"], gain, 0.05 * (gain - 1.0));
 }
 
+// Blind seed 1051, case 14: a 100 g load carried by the Panda from 15.2 to 32.3 s beside a 0.177
+// rad offset of joint 6, open loop at 1 kHz. The load, accepted first, was placed against a
+// residual that still held the offset: as a load over the whole log, which beside the offset then
+// explained nothing more and was dropped; the offset alone read 0.136. Placed again beside the
+// offset, the load is found while carried.
+TEST(DiagnoseCommand, ALoadAcceptedBeforeAnotherEffectIsPlacedAgainBesideIt) {
+  diagnose::SyntheticOptions options;
+  options.rate = 1000;
+  options.seed = 1051014;
+  options.payload_on = 15.194764909741503;
+  options.payload_off = 32.252253332046045;
+  const double offset = 0.1773425274907022, mass = 0.09998392772632175;
+  const nlohmann::json d = diagnose_synthetic(panda_derivation(), "panda", "offset_beside_a_carried_load",
+                                              {{.effect = "position_offset", .joint = 5, .size = offset},
+                                               {.effect = "payload", .joint = 5, .size = mass}},
+                                              options);
+  std::map<std::string, double> fitted = fitted_of(d);
+  ASSERT_TRUE(fitted.count("offset6") && fitted.count("mass") && fitted.count("picked_up_at")) << d["selected"].dump();
+  EXPECT_NEAR(fitted["offset6"], offset, 0.03 * offset);
+  EXPECT_NEAR(fitted["mass"], mass, 0.03 * mass);
+  EXPECT_NEAR(fitted["picked_up_at"], options.payload_on, 0.1);
+  EXPECT_NEAR(fitted["put_down_at"], options.payload_off, 0.1);
+}
+
 // A table at `height` m (base frame) in a run of dyncc excite, diagnosed; the verdict must be the
 // contact.
 nlohmann::json diagnosed_contact(const std::string& name, double height, const std::string& run) {
