@@ -159,17 +159,34 @@ void rechoose_points(Diagnosis& out, const std::deque<Effect>& effects, const Ei
   }
 }
 
+// `effects` fitted together as the final joint fit fits the selection, with what that removes of
+// the nominal model's held-out error (`shrink`, its interval and its folds).
+Candidate fitted_together(const Diagnosis& out, const std::vector<Effect>& effects, const Eigen::VectorXd& r0,
+                          const Eigen::VectorXd& weight, Eigen::Index n) {
+  Candidate c;
+  c.cv = fit_together(effects, r0, weight, out.folds, out.away, out.far, n);
+  set_shrink(c, r0, weight, n, &out.scored);
+  return c;
+}
+
+// The names a selected "A or B or ..." gives beside A.
+std::vector<std::string> alternative_names(const std::string& named) {
+  std::vector<std::string> names;
+  std::size_t from = named.find(kOr);
+  while (from != std::string::npos) {
+    const std::size_t next = named.find(kOr, from + kOr.size());
+    names.push_back(named.substr(from + kOr.size(), next == std::string::npos ? next : next - from - kOr.size()));
+    from = next;
+  }
+  return names;
+}
+
 // "A or B or ..." with only the alternatives that are per-joint effects (a family among
 // `candidates` whose effects are per_joint) not selected at a step other than k.
 std::string with_per_joint_alternatives(const std::string& named, const std::deque<Effect>& candidates,
                                         const std::vector<Effect>& selected, std::size_t k) {
   std::string out = named.substr(0, named.find(kOr));
-  std::size_t from = named.find(kOr);
-  while (from != std::string::npos) {
-    const std::size_t next = named.find(kOr, from + kOr.size());
-    const std::string name =
-        named.substr(from + kOr.size(), next == std::string::npos ? next : next - from - kOr.size());
-    from = next;
+  for (const std::string& name : alternative_names(named)) {
     bool taken = false;
     for (std::size_t i = 0; i < selected.size(); ++i) taken = taken || (i != k && selected[i].family == name);
     const bool per_joint_family = std::any_of(candidates.begin(), candidates.end(),
@@ -207,27 +224,19 @@ void place_loads_again(Diagnosis& out, const std::deque<Effect>& candidates, con
     if (!placer) placer.emplace(d, derivation, in_long_rests(d, out.away));
     std::vector<Effect> placed;
     placer->add_effects(r0, others, placed);
-    auto removed = [&](const std::vector<Effect>& effects, CrossValidation* fit) {
-      Candidate c;
-      c.cv = fit_together(effects, r0, weight, out.folds, out.away, out.far, n);
-      set_shrink(c, r0, weight, n, &out.scored);
-      if (fit != nullptr) *fit = std::move(c.cv);
-      return c.shrink;
-    };
     // (Placed again, a load moves a little beside the others; it is a new placing where it removes
     // 1 % more of the held-out error.)
-    double most = removed(out.accepted_effects, nullptr) + 0.01;
+    double most = fitted_together(out, out.accepted_effects, r0, weight, n).shrink + 0.01;
+    // Where the load's coefficients sit in the joint fit: the effects before k keep their columns.
+    Eigen::Index offset = 0;
+    for (std::size_t i = 0; i < k; ++i) offset += out.accepted_effects[i].columns.cols();
     for (Effect& load : placed) {
       std::vector<Effect> in_place = out.accepted_effects;
       in_place[k] = load;
-      CrossValidation fit;
-      const double shrink = removed(in_place, &fit);
-      if (!(shrink > most)) continue;
-      most = shrink;
-      // Where this load's coefficients sit in the fit: the effects before k keep their columns.
-      Eigen::Index offset = 0;
-      for (std::size_t i = 0; i < k; ++i) offset += out.accepted_effects[i].columns.cols();
-      parts[k] = load.columns * fit.theta.segment(offset, load.columns.cols());
+      const Candidate fit = fitted_together(out, in_place, r0, weight, n);
+      if (!(fit.shrink > most)) continue;
+      most = fit.shrink;
+      parts[k] = load.columns * fit.cv.theta.segment(offset, load.columns.cols());
       // The alternatives named at its step tied with the load as placed then: those of the whole
       // arm go (a contact that stood in for a load over the whole log is no alternative to it
       // while carried); a per-joint one not selected at another step stays, read in its place
@@ -449,16 +458,13 @@ void one_effect_for_two_steps(Diagnosis& out, const std::vector<std::vector<Step
                         [&](const StepAlternative& a) { return a.effect.family == alternative.family; });
         if (!within || !named_later || alternative.columns.cols() == 0) continue;
         if (!fitted) {
-          all.cv = fit_together(out.accepted_effects, r0, weight, out.folds, out.away, out.far, n);
-          set_shrink(all, r0, weight, n, &out.scored);
+          all = fitted_together(out, out.accepted_effects, r0, weight, n);
           fitted = true;
         }
         std::vector<Effect> merged = out.accepted_effects;
         merged[i] = alternative;
         merged.erase(merged.begin() + static_cast<std::ptrdiff_t>(k));
-        Candidate one;
-        one.cv = fit_together(merged, r0, weight, out.folds, out.away, out.far, n);
-        set_shrink(one, r0, weight, n, &out.scored);
+        const Candidate one = fitted_together(out, merged, r0, weight, n);
         if (clearly_more(all, one) || one.low <= 0.0) continue;
         Eigen::Index at = 0;
         for (std::size_t e = 0; e < i; ++e) at += merged[e].columns.cols();
@@ -688,9 +694,7 @@ std::optional<InPlace> best_in_place(const Diagnosis& out, const std::deque<Effe
     if (mine.columns.cols() == 0) continue;
     std::vector<Effect> in_place = out.accepted_effects;
     in_place[k] = mine;
-    Candidate c;
-    c.cv = fit_together(in_place, r0, weight, out.folds, out.away, out.far, n);
-    set_shrink(c, r0, weight, n, &out.scored);
+    Candidate c = fitted_together(out, in_place, r0, weight, n);
     if (!best || c.shrink > best->fit.shrink) best = InPlace{std::move(c), std::move(mine)};
   }
   return best;
@@ -729,11 +733,7 @@ void take_rivals_of_narrowed_steps(Diagnosis& out, const std::deque<Effect>& eff
       at += width;
       continue;
     }
-    if (!named) {
-      named.emplace();
-      named->cv = fit_together(out.accepted_effects, r0, weight, out.folds, out.away, out.far, n);
-      set_shrink(*named, r0, weight, n, &out.scored);
-    }
+    if (!named) named = fitted_together(out, out.accepted_effects, r0, weight, n);
     const std::vector<int> joints = joints_of(mine);
     std::vector<std::string> tried;
     std::optional<InPlace> best;
@@ -1000,20 +1000,10 @@ void fit_alternatives_in_place(Diagnosis& out, const std::deque<Effect>& effects
     const Eigen::Index width = out.accepted_effects[k].columns.cols();
     std::vector<int> joints;  // 0-based
     for (const int j : r.joints) joints.push_back(j - 1);
-    std::size_t from = r.effect.find(kOr);
-    while (from != std::string::npos && !joints.empty()) {
-      const std::size_t next = r.effect.find(kOr, from + kOr.size());
-      const std::string name =
-          r.effect.substr(from + kOr.size(), next == std::string::npos ? std::string::npos : next - from - kOr.size());
-      from = next;
+    for (const std::string& name : joints.empty() ? std::vector<std::string>{} : alternative_names(r.effect)) {
       std::optional<InPlace> best = best_in_place(out, effects, k, name, joints, r0, weight, n);
       if (!best) continue;
-      if (!named_shrink) {
-        Candidate named;
-        named.cv = fit_together(out.accepted_effects, r0, weight, out.folds, out.away, out.far, n);
-        set_shrink(named, r0, weight, n, &out.scored);
-        named_shrink = named.shrink;
-      }
+      if (!named_shrink) named_shrink = fitted_together(out, out.accepted_effects, r0, weight, n).shrink;
       best->fit.effect = &best->effect;
       best->fit.after = joint_rms(best->fit.cv.heldout, n);
       const RankedEffect read = describe(best->fit, r.before, at, out.gap.torque_rms);
